@@ -1,0 +1,28 @@
+# Thin front door over CMake: `make demo` and `make test` work on a fresh Debian 12 machine.
+# Every target first installs missing Debian packages (scripts/install-deps).
+PRESET ?= release
+JOBS ?= $(shell nproc)
+
+.PHONY: deps configure build test demo bench clean
+
+deps:
+	@scripts/install-deps
+
+configure: deps
+	@cmake --preset $(PRESET) >/dev/null
+
+build: configure
+	@cmake --build --preset $(PRESET) -j $(JOBS)
+
+test: build
+	@build/bin/brdfcl-tests --gtest_brief=1
+
+demo: build
+	@build/bin/brdfcl demo
+
+bench: build
+	@mkdir -p out
+	@build/bin/brdfcl-bench --benchmark_out=out/bench.json --benchmark_out_format=json
+
+clean:
+	@rm -rf build

@@ -1,0 +1,12 @@
+// The CLI's subcommands. Each registers its options on a CLI11 app and runs from a callback;
+// errors travel as brdfcl::Error up to main(), which prints one line and exits with its code.
+#pragma once
+#include <CLI/CLI.hpp>
+
+namespace brdfcl::cli {
+
+void addDevicesCommand(CLI::App& app);
+void addEvalCommand(CLI::App& app);
+void addDemoCommand(CLI::App& app);
+
+}  // namespace brdfcl::cli

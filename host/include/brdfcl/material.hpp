@@ -1,0 +1,65 @@
+// glTF material parameters as the specs define them, and the options that choose between the
+// sheen variants. This is the vocabulary shared by the host library, the CLI and the tests.
+#pragma once
+#include <array>
+#include <cstdint>
+#include <string>
+
+namespace brdfcl {
+
+using Rgb = std::array<float, 3>;
+
+// One glTF 2.0 material: pbrMetallicRoughness + KHR_materials_sheen (ratified or draft keys)
+// + KHR_materials_clearcoat + KHR_materials_anisotropy. Defaults are the specs' defaults.
+struct MaterialParams {
+  std::string name;
+  Rgb baseColor{1.0f, 1.0f, 1.0f};
+  float metallic = 1.0f;
+  float roughness = 1.0f;
+
+  // Ratified KHR_materials_sheen (000_f98956a39f2e26b4.txt).
+  Rgb sheenColor{0.0f, 0.0f, 0.0f};
+  float sheenRoughness = 0.0f;
+
+  // Experimental draft (001_1d237f8840bf9d13.txt): used when the extension object has the
+  // draft keys intensityFactor/colorFactor. Sheen roughness is then the material roughness.
+  bool draftSheen = false;
+  float draftIntensity = 1.0f;
+  Rgb draftColor{1.0f, 1.0f, 1.0f};
+
+  // KHR_materials_clearcoat (004_76cb6f49baa6fc7c.txt).
+  float clearcoat = 0.0f;
+  float clearcoatRoughness = 0.0f;
+
+  // KHR_materials_anisotropy (002_aa19eb57033fc98d.txt).
+  float anisotropyStrength = 0.0f;
+  float anisotropyRotation = 0.0f;  // radians, counter-clockwise from T in the tangent plane
+
+  // Emission is not part of f; kept for the G-buffer path.
+  Rgb emissive{0.0f, 0.0f, 0.0f};
+};
+
+enum class SheenVisibility { Charlie, Ashikhmin };
+enum class SheenDistribution { Charlie, Ashikhmin };
+enum class SheenScaling { Min, View, None };
+enum class Lobe { All, Diffuse, Specular, Sheen, Clearcoat };
+
+struct EvalOptions {
+  SheenVisibility sheenVisibility = SheenVisibility::Charlie;
+  SheenDistribution sheenDistribution = SheenDistribution::Charlie;
+  SheenScaling sheenScaling = SheenScaling::Min;
+  Lobe lobe = Lobe::All;
+};
+
+// Parsing and printing of the option values, as the CLI spells them ("charlie", "min", ...).
+// parse* throw brdfcl::Error naming the option and the accepted values.
+SheenVisibility parseSheenVisibility(const std::string& s);
+SheenDistribution parseSheenDistribution(const std::string& s);
+SheenScaling parseSheenScaling(const std::string& s);
+Lobe parseLobe(const std::string& s);
+const char* toString(SheenVisibility v);
+const char* toString(SheenDistribution d);
+const char* toString(SheenScaling s);
+const char* toString(Lobe l);
+
+}  // namespace brdfcl

@@ -1,0 +1,69 @@
+// The OpenCL runtime: device selection, one context and in-order queue per device, and a
+// program cache keyed by (device, build options, source). Every failing OpenCL call throws
+// brdfcl::Error naming the call and its error code; a build failure carries the build log.
+#pragma once
+#include <CL/opencl.hpp>
+
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <tuple>
+#include <vector>
+
+namespace brdfcl {
+
+struct DeviceInfo {
+  std::size_t index;  // position in the flattened list of all platforms' devices
+  std::string name;
+  std::string platform;
+  std::string type;  // CPU, GPU, ACCELERATOR, ...
+  unsigned computeUnits;
+  std::string openclC;  // CL_DEVICE_OPENCL_C_VERSION
+  std::uint64_t maxAlloc;
+  std::uint64_t globalMem;
+};
+
+// All devices of all platforms. Throws "no OpenCL platform found; ..." (exit 2) if none.
+std::vector<DeviceInfo> listDevices();
+
+// Name of an OpenCL error code, e.g. "CL_OUT_OF_RESOURCES".
+const char* clErrorName(int code);
+
+// Throws brdfcl::Error for a cl::Error caught from the C++ bindings: "OpenCL call clXxx failed:
+// CL_NAME (code)", with the build log for a cl::BuildError. `what` says what brdfcl was doing.
+[[noreturn]] void rethrowOpenCL(const std::string& what);
+
+class Runtime {
+ public:
+  // selector: "" (then $BRDFCL_DEVICE, then device 0), an index, or a name substring.
+  explicit Runtime(const std::string& selector = "");
+
+  const cl::Device& device() const { return device_; }
+  const cl::Context& context() const { return context_; }
+  cl::CommandQueue& queue() { return queue_; }
+  const DeviceInfo& info() const { return info_; }
+
+  // Builds (or returns from the cache) the program for an embedded kernel file, e.g. "eval.cl",
+  // with its #include "..." lines resolved from kernels/. `defines` are extra -D options.
+  cl::Program program(const std::string& kernelFile, const std::string& defines = "");
+
+  // The -cl-std option picked from the device's OpenCL C version.
+  const std::string& standardOption() const { return clStd_; }
+
+ private:
+  cl::Device device_;
+  cl::Context context_;
+  cl::CommandQueue queue_;
+  DeviceInfo info_;
+  std::string clStd_;
+  std::mutex cacheMutex_;
+  std::map<std::pair<std::string, std::string>, cl::Program> cache_;  // (options, source) -> program
+};
+
+// The full source of an embedded kernel file with its includes expanded (for tests and tools).
+std::string kernelSource(const std::string& kernelFile);
+
+}  // namespace brdfcl

@@ -1,0 +1,25 @@
+// Decoding of glTF material parameters into the packed layout the kernels read
+// (kernels/common/material_layout.h), and the compile-time feature set of a batch.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "brdfcl/material.hpp"
+#include "kernels/common/material_layout.h"
+
+namespace brdfcl {
+
+brdfcl_material packMaterial(const MaterialParams& m);
+
+// Which layers any material of the batch uses; unused ones are compiled out.
+struct FeatureSet {
+  bool sheen = false, draft = false, clearcoat = false, anisotropy = false;
+  bool needsSheenAlbedo(const EvalOptions& o) const { return ratifiedSheen && o.sheenScaling != SheenScaling::None; }
+  bool ratifiedSheen = false;
+};
+FeatureSet featuresOf(const std::vector<MaterialParams>& materials);
+
+// The -D options for kernels/brdf/material.h.
+std::string materialDefines(const EvalOptions& o, const FeatureSet& f);
+
+}  // namespace brdfcl

@@ -1,0 +1,210 @@
+// OpenCL device selection, context/queue setup and the program cache. Kernel sources come from
+// the embedded copy of kernels/, with #include "..." lines expanded here (OpenCL has no virtual FS).
+#include "brdfcl/runtime.hpp"
+
+#include <cstdlib>
+#include <set>
+#include <sstream>
+
+#include <fmt/format.h>
+
+#include "brdfcl/error.hpp"
+
+namespace brdfcl {
+namespace detail {
+const std::map<std::string, std::string>& embeddedKernels();
+}
+
+const char* clErrorName(int code) {
+  switch (code) {
+#define BRDFCL_CL_ERR(x) case x: return #x;
+    BRDFCL_CL_ERR(CL_SUCCESS) BRDFCL_CL_ERR(CL_DEVICE_NOT_FOUND) BRDFCL_CL_ERR(CL_DEVICE_NOT_AVAILABLE)
+    BRDFCL_CL_ERR(CL_COMPILER_NOT_AVAILABLE) BRDFCL_CL_ERR(CL_MEM_OBJECT_ALLOCATION_FAILURE)
+    BRDFCL_CL_ERR(CL_OUT_OF_RESOURCES) BRDFCL_CL_ERR(CL_OUT_OF_HOST_MEMORY)
+    BRDFCL_CL_ERR(CL_PROFILING_INFO_NOT_AVAILABLE) BRDFCL_CL_ERR(CL_MEM_COPY_OVERLAP)
+    BRDFCL_CL_ERR(CL_IMAGE_FORMAT_MISMATCH) BRDFCL_CL_ERR(CL_IMAGE_FORMAT_NOT_SUPPORTED)
+    BRDFCL_CL_ERR(CL_BUILD_PROGRAM_FAILURE) BRDFCL_CL_ERR(CL_MAP_FAILURE)
+    BRDFCL_CL_ERR(CL_MISALIGNED_SUB_BUFFER_OFFSET) BRDFCL_CL_ERR(CL_COMPILE_PROGRAM_FAILURE)
+    BRDFCL_CL_ERR(CL_LINKER_NOT_AVAILABLE) BRDFCL_CL_ERR(CL_LINK_PROGRAM_FAILURE)
+    BRDFCL_CL_ERR(CL_INVALID_VALUE) BRDFCL_CL_ERR(CL_INVALID_DEVICE_TYPE) BRDFCL_CL_ERR(CL_INVALID_PLATFORM)
+    BRDFCL_CL_ERR(CL_INVALID_DEVICE) BRDFCL_CL_ERR(CL_INVALID_CONTEXT) BRDFCL_CL_ERR(CL_INVALID_QUEUE_PROPERTIES)
+    BRDFCL_CL_ERR(CL_INVALID_COMMAND_QUEUE) BRDFCL_CL_ERR(CL_INVALID_HOST_PTR) BRDFCL_CL_ERR(CL_INVALID_MEM_OBJECT)
+    BRDFCL_CL_ERR(CL_INVALID_BINARY) BRDFCL_CL_ERR(CL_INVALID_BUILD_OPTIONS) BRDFCL_CL_ERR(CL_INVALID_PROGRAM)
+    BRDFCL_CL_ERR(CL_INVALID_PROGRAM_EXECUTABLE) BRDFCL_CL_ERR(CL_INVALID_KERNEL_NAME)
+    BRDFCL_CL_ERR(CL_INVALID_KERNEL_DEFINITION) BRDFCL_CL_ERR(CL_INVALID_KERNEL) BRDFCL_CL_ERR(CL_INVALID_ARG_INDEX)
+    BRDFCL_CL_ERR(CL_INVALID_ARG_VALUE) BRDFCL_CL_ERR(CL_INVALID_ARG_SIZE) BRDFCL_CL_ERR(CL_INVALID_KERNEL_ARGS)
+    BRDFCL_CL_ERR(CL_INVALID_WORK_DIMENSION) BRDFCL_CL_ERR(CL_INVALID_WORK_GROUP_SIZE)
+    BRDFCL_CL_ERR(CL_INVALID_WORK_ITEM_SIZE) BRDFCL_CL_ERR(CL_INVALID_GLOBAL_OFFSET)
+    BRDFCL_CL_ERR(CL_INVALID_EVENT_WAIT_LIST) BRDFCL_CL_ERR(CL_INVALID_EVENT) BRDFCL_CL_ERR(CL_INVALID_OPERATION)
+    BRDFCL_CL_ERR(CL_INVALID_BUFFER_SIZE) BRDFCL_CL_ERR(CL_INVALID_GLOBAL_WORK_SIZE)
+    BRDFCL_CL_ERR(CL_INVALID_PROPERTY) BRDFCL_CL_ERR(CL_INVALID_COMPILER_OPTIONS)
+    BRDFCL_CL_ERR(CL_INVALID_LINKER_OPTIONS)
+#undef BRDFCL_CL_ERR
+    case -1001: return "CL_PLATFORM_NOT_FOUND_KHR";
+    default: return "unknown OpenCL error";
+  }
+}
+
+namespace {
+
+constexpr const char* kNoPlatform = "no OpenCL platform found; install pocl-opencl-icd (make deps)";
+
+std::vector<cl::Platform> platformsOrThrow() {
+  std::vector<cl::Platform> platforms;
+  try {
+    cl::Platform::get(&platforms);
+  } catch (const cl::Error&) {
+    platforms.clear();  // the ICD loader reports "no platform" as CL_PLATFORM_NOT_FOUND_KHR
+  }
+  if (platforms.empty()) throw Error(kNoPlatform);
+  return platforms;
+}
+
+std::vector<std::pair<cl::Device, cl::Platform>> allDevices() {
+  std::vector<std::pair<cl::Device, cl::Platform>> out;
+  for (auto& p : platformsOrThrow()) {
+    std::vector<cl::Device> devices;
+    try {
+      p.getDevices(CL_DEVICE_TYPE_ALL, &devices);
+    } catch (const cl::Error&) {
+      continue;  // a platform without devices answers CL_DEVICE_NOT_FOUND
+    }
+    for (auto& d : devices) out.emplace_back(d, p);
+  }
+  if (out.empty()) throw Error("no OpenCL device found; install pocl-opencl-icd (make deps)");
+  return out;
+}
+
+std::string trim(std::string s) {
+  while (!s.empty() && (s.back() == '\0' || std::isspace(static_cast<unsigned char>(s.back())))) s.pop_back();
+  return s;
+}
+
+DeviceInfo describe(std::size_t index, const cl::Device& d, const cl::Platform& p) {
+  DeviceInfo info;
+  info.index = index;
+  info.name = trim(d.getInfo<CL_DEVICE_NAME>());
+  info.platform = trim(p.getInfo<CL_PLATFORM_NAME>());
+  auto type = d.getInfo<CL_DEVICE_TYPE>();
+  info.type = (type & CL_DEVICE_TYPE_GPU) ? "GPU" : (type & CL_DEVICE_TYPE_CPU) ? "CPU"
+              : (type & CL_DEVICE_TYPE_ACCELERATOR) ? "ACCELERATOR" : "OTHER";
+  info.computeUnits = d.getInfo<CL_DEVICE_MAX_COMPUTE_UNITS>();
+  info.openclC = trim(d.getInfo<CL_DEVICE_OPENCL_C_VERSION>());
+  info.maxAlloc = d.getInfo<CL_DEVICE_MAX_MEM_ALLOC_SIZE>();
+  info.globalMem = d.getInfo<CL_DEVICE_GLOBAL_MEM_SIZE>();
+  return info;
+}
+
+// "OpenCL C 1.2 PoCL" -> -cl-std=CL1.2; devices that speak 3.0 still get the 1.2 dialect's
+// guarantees unless they report 2.x/3.x, in which case CL3.0/CL2.0 is asked for explicitly.
+std::string pickStd(const std::string& openclC) {
+  int major = 1, minor = 2;
+  if (std::sscanf(openclC.c_str(), "OpenCL C %d.%d", &major, &minor) != 2) return "-cl-std=CL1.2";
+  if (major >= 3) return "-cl-std=CL3.0";
+  if (major == 2) return "-cl-std=CL2.0";
+  return fmt::format("-cl-std=CL{}.{}", major, minor);
+}
+
+void expandIncludes(const std::string& name, std::set<std::string>& seen, std::string& out) {
+  if (!seen.insert(name).second) return;  // every header has guards; skip the work as well
+  const auto& files = detail::embeddedKernels();
+  auto it = files.find(name);
+  if (it == files.end()) throw Error(fmt::format("internal: kernel file '{}' is not embedded", name), 3);
+  std::istringstream in(it->second);
+  std::string line;
+  while (std::getline(in, line)) {
+    auto pos = line.find("#include \"");
+    if (pos != std::string::npos && line.find_first_not_of(" \t") == pos) {
+      auto end = line.find('"', pos + 10);
+      expandIncludes(line.substr(pos + 10, end - pos - 10), seen, out);
+      continue;
+    }
+    out += line;
+    out += '\n';
+  }
+}
+
+}  // namespace
+
+void rethrowOpenCL(const std::string& what) {
+  try {
+    throw;
+  } catch (const cl::BuildError& e) {
+    std::string log;
+    for (const auto& [dev, text] : e.getBuildLog()) log += text;
+    throw Error(fmt::format("{}: OpenCL kernel build failed ({}); build log:\n{}", what, e.what(), log));
+  } catch (const cl::Error& e) {
+    throw Error(fmt::format("{}: OpenCL call {} failed: {} ({})", what, e.what(), clErrorName(e.err()), e.err()));
+  }
+}
+
+std::vector<DeviceInfo> listDevices() {
+  try {
+    std::vector<DeviceInfo> out;
+    auto devices = allDevices();
+    for (std::size_t i = 0; i < devices.size(); ++i) out.push_back(describe(i, devices[i].first, devices[i].second));
+    return out;
+  } catch (const cl::Error&) {
+    rethrowOpenCL("listing OpenCL devices");
+  }
+}
+
+std::string kernelSource(const std::string& kernelFile) {
+  std::set<std::string> seen;
+  std::string out;
+  expandIncludes(kernelFile, seen, out);
+  return out;
+}
+
+Runtime::Runtime(const std::string& selectorArg) {
+  std::string selector = selectorArg;
+  if (selector.empty()) {
+    if (const char* env = std::getenv("BRDFCL_DEVICE")) selector = env;
+  }
+  try {
+    auto devices = allDevices();
+    std::size_t chosen = devices.size();
+    if (selector.empty()) {
+      chosen = 0;
+    } else if (selector.find_first_not_of("0123456789") == std::string::npos) {
+      chosen = std::stoul(selector);
+      if (chosen >= devices.size())
+        throw Error(fmt::format("device index {} out of range: {} device(s) found; see 'brdfcl devices'", chosen,
+                                devices.size()));
+    } else {
+      for (std::size_t i = 0; i < devices.size() && chosen == devices.size(); ++i) {
+        if (describe(i, devices[i].first, devices[i].second).name.find(selector) != std::string::npos) chosen = i;
+      }
+      if (chosen == devices.size())
+        throw Error(fmt::format("no OpenCL device matches '{}'; see 'brdfcl devices'", selector));
+    }
+    device_ = devices[chosen].first;
+    info_ = describe(chosen, device_, devices[chosen].second);
+    clStd_ = pickStd(info_.openclC);
+    context_ = cl::Context(device_);
+    queue_ = cl::CommandQueue(context_, device_);
+  } catch (const cl::Error&) {
+    rethrowOpenCL("opening OpenCL device");
+  }
+}
+
+cl::Program Runtime::program(const std::string& kernelFile, const std::string& defines) {
+  std::string source = kernelSource(kernelFile);
+  // -w: PoCL prints clang warnings (e.g. the float16 ABI note on AVX2) to stderr; real
+  // problems are errors and reach the user through the build log.
+  std::string options = clStd_ + " -w " + defines;
+  std::lock_guard<std::mutex> lock(cacheMutex_);
+  auto key = std::make_pair(options, source);
+  if (auto it = cache_.find(key); it != cache_.end()) return it->second;
+  cl::Program program;
+  try {
+    program = cl::Program(context_, source);
+    program.build(std::vector<cl::Device>{device_}, options.c_str());
+  } catch (const cl::Error&) {
+    rethrowOpenCL(fmt::format("building {} with '{}'", kernelFile, options));
+  }
+  cache_.emplace(std::move(key), program);
+  return program;
+}
+
+}  // namespace brdfcl

@@ -1,0 +1,205 @@
+/* The layered glTF material: base (Appendix B) with anisotropy, sheen (ratified or draft) with
+   albedo scaling, clearcoat on top. Lobes are built from terms.h, the material from lobes.
+   Options and the feature set of a batch are compile-time defines, so unused layers cost nothing. */
+#ifndef BRDFCL_MATERIAL_H
+#define BRDFCL_MATERIAL_H
+
+#include "common/material_layout.h"
+#include "common/lanes.h"
+#include "brdf/terms.h"
+#include "brdf/sheen_albedo.h"
+
+#ifndef BRDFCL_SHEEN_VIS
+#define BRDFCL_SHEEN_VIS BRDFCL_SHEEN_VIS_CHARLIE
+#endif
+#ifndef BRDFCL_SHEEN_DIST
+#define BRDFCL_SHEEN_DIST BRDFCL_SHEEN_DIST_CHARLIE
+#endif
+#ifndef BRDFCL_SCALING
+#define BRDFCL_SCALING BRDFCL_SCALING_MIN
+#endif
+#ifndef BRDFCL_LOBE
+#define BRDFCL_LOBE BRDFCL_LOBE_ALL
+#endif
+/* Feature set of the batch: a layer no material uses is compiled out. */
+#ifndef BRDFCL_HAS_SHEEN
+#define BRDFCL_HAS_SHEEN 1
+#endif
+#ifndef BRDFCL_HAS_DRAFT
+#define BRDFCL_HAS_DRAFT 1
+#endif
+#ifndef BRDFCL_HAS_CLEARCOAT
+#define BRDFCL_HAS_CLEARCOAT 1
+#endif
+#ifndef BRDFCL_HAS_ANISOTROPY
+#define BRDFCL_HAS_ANISOTROPY 1
+#endif
+
+/* Below this cosine, denominators of V terms are evaluated at this cosine: keeps f finite at
+   N.L or N.V -> 0+ (documented clamp; f = 0 at N.L <= 0 or N.V <= 0 anyway). */
+#define BRDFCL_MIN_COS 1.0e-4f
+
+#define BRDFCL_MATERIAL_LANES(X)                                                  \
+  X(base_r, m->base_color[0]) X(base_g, m->base_color[1]) X(base_b, m->base_color[2]) \
+  X(metallic, m->metallic) X(alpha, m->alpha) X(alpha_t, m->alpha_t)            \
+  X(aniso_cos, m->aniso_cos) X(aniso_sin, m->aniso_sin)                         \
+  X(sheen_r, m->sheen_color[0]) X(sheen_g, m->sheen_color[1]) X(sheen_b, m->sheen_color[2]) \
+  X(sheen_max, m->sheen_max) X(sheen_alpha, m->sheen_alpha)                     \
+  X(sheen_roughness, m->sheen_roughness) X(sheen_weight, m->sheen_weight)       \
+  X(draft, ((m->flags & BRDFCL_MAT_DRAFT_SHEEN) ? 1.0f : 0.0f))                  \
+  X(clearcoat, m->clearcoat) X(clearcoat_alpha, m->clearcoat_alpha)
+
+#define BRDFCL_DECLARE_LANE(name, src) realw name;
+typedef struct { BRDFCL_MATERIAL_LANES(BRDFCL_DECLARE_LANE) } material_lanes;
+
+/* All lanes share one material (grid evaluation): splat. */
+BRDF_FN material_lanes material_splat(__global const brdfcl_material* m) {
+  material_lanes out;
+#define BRDFCL_SPLAT_LANE(name, src) out.name = (realw)(src);
+  BRDFCL_MATERIAL_LANES(BRDFCL_SPLAT_LANE)
+  return out;
+}
+
+/* Each lane has its own material index: gather field by field. */
+#if BRDFCL_W == 1
+BRDF_FN material_lanes material_gather(__global const brdfcl_material* materials, uintw index) {
+  return material_splat(materials + index);
+}
+#else
+BRDF_FN material_lanes material_gather(__global const brdfcl_material* materials, uintw index) {
+  uint idx[BRDFCL_W];
+  VSTOREW(index, 0, idx);
+#define BRDFCL_LANE_ARRAY(name, src) float name##_a[BRDFCL_W];
+  BRDFCL_MATERIAL_LANES(BRDFCL_LANE_ARRAY)
+  for (int i = 0; i < BRDFCL_W; ++i) {
+    __global const brdfcl_material* m = materials + idx[i];
+#define BRDFCL_LANE_STORE(name, src) name##_a[i] = (src);
+    BRDFCL_MATERIAL_LANES(BRDFCL_LANE_STORE)
+  }
+  material_lanes out;
+#define BRDFCL_LANE_LOAD(name, src) out.name = VLOADW(0, name##_a);
+  BRDFCL_MATERIAL_LANES(BRDFCL_LANE_LOAD)
+  return out;
+}
+#endif
+
+/* White sheen lobe D * V for the batch's options; 000 "Sheen distribution", "Sheen visibility". */
+BRDF_FN realw sheen_dv(realw hxy2, realw hn2, realw NdotL, realw NdotV, realw alpha) {
+#if BRDFCL_SHEEN_DIST == BRDFCL_SHEEN_DIST_ASHIKHMIN
+  realw D = D_Ashikhmin(hxy2, hn2, alpha);
+#else
+  realw D = D_Charlie(hxy2, hn2, alpha);
+#endif
+#if BRDFCL_SHEEN_VIS == BRDFCL_SHEEN_VIS_ASHIKHMIN
+  realw V = V_Ashikhmin(NdotL, NdotV);
+#else
+  realw V = V_Charlie(NdotL, NdotV, alpha);
+#endif
+  return D * V;
+}
+
+/* The layered material, f(L, V) in 1/sr without the cosine. L, V: unit vectors in the shading
+   frame (N = +Z). `sheen_e`: E table for the batch's sheen options (unused without scaling). */
+BRDF_FN rgbw brdf_material(const material_lanes m, vec3w L, vec3w V, __global const float* sheen_e,
+                           int sheen_e_size) {
+  intw valid = (L.z > 0.0f) & (V.z > 0.0f);
+  realw NdotL = max(L.z, BRDFCL_MIN_COS), NdotV = max(V.z, BRDFCL_MIN_COS);
+
+  vec3w h = {L.x + V.x, L.y + V.y, L.z + V.z};
+  realw hxy2 = h.x * h.x + h.y * h.y, hn2 = h.z * h.z, h2 = hxy2 + hn2;
+  realw inv_h = rsqrt(h2);
+  /* 1 - V.H = |V - H|^2 / 2 for unit vectors: no cancellation as H -> V. */
+  realw dx = V.x - h.x * inv_h, dy = V.y - h.y * inv_h, dz = V.z - h.z * inv_h;
+  realw w = pow5w(0.5f * (dx * dx + dy * dy + dz * dz));
+
+  rgbw result = rgbw_splat(0.0f);
+
+  /* Base layer: glTF 2.0 Appendix B, specular D and V replaced by 002's anisotropic forms. */
+#if BRDFCL_LOBE == BRDFCL_LOBE_ALL || BRDFCL_LOBE == BRDFCL_LOBE_DIFFUSE || BRDFCL_LOBE == BRDFCL_LOBE_SPECULAR
+  rgbw base;
+  {
+#if BRDFCL_LOBE != BRDFCL_LOBE_DIFFUSE
+#if BRDFCL_HAS_ANISOTROPY
+    /* T' = (cos r, sin r, 0), B' = N x T' = (-sin r, cos r, 0). */
+    realw c = m.aniso_cos, s = m.aniso_sin;
+    realw ht = h.x * c + h.y * s, hb = h.y * c - h.x * s;
+    realw TdotV = V.x * c + V.y * s, BdotV = V.y * c - V.x * s;
+    realw TdotL = L.x * c + L.y * s, BdotL = L.y * c - L.x * s;
+    realw spec = D_GGX_Anisotropic(ht, hb, h.z, h2, m.alpha_t, m.alpha) *
+                 V_GGX_Anisotropic(NdotL, NdotV, TdotV, BdotV, TdotL, BdotL, m.alpha_t, m.alpha);
+#else
+    realw spec = D_GGX(hxy2, hn2, m.alpha) * V_SmithGGXCorrelated(NdotL, NdotV, m.alpha);
+#endif
+#endif
+    realw F = F_Schlick(0.04f, w);
+    realw dielectric_w = 1.0f - m.metallic;
+    base = rgbw_splat(0.0f);
+#if BRDFCL_LOBE != BRDFCL_LOBE_SPECULAR
+    realw kd = dielectric_w * (1.0f - F) * M_1_PI_F;
+    base.r += kd * m.base_r;
+    base.g += kd * m.base_g;
+    base.b += kd * m.base_b;
+#endif
+#if BRDFCL_LOBE != BRDFCL_LOBE_DIFFUSE
+    realw ks = dielectric_w * F;
+    base.r += (ks + m.metallic * F_Schlick(m.base_r, w)) * spec;
+    base.g += (ks + m.metallic * F_Schlick(m.base_g, w)) * spec;
+    base.b += (ks + m.metallic * F_Schlick(m.base_b, w)) * spec;
+#endif
+  }
+#if BRDFCL_HAS_SHEEN && BRDFCL_SCALING != BRDFCL_SCALING_NONE
+  /* Conty & Kulla albedo scaling; 000 "Albedo-scaling technique". Draft lanes have sheen_max 0. */
+  realw s_view = 1.0f - m.sheen_max * E_SheenAlbedo(sheen_e, sheen_e_size, NdotV, m.sheen_roughness);
+#if BRDFCL_SCALING == BRDFCL_SCALING_MIN
+  realw s_light = 1.0f - m.sheen_max * E_SheenAlbedo(sheen_e, sheen_e_size, NdotL, m.sheen_roughness);
+  base = rgbw_scale(base, min(s_view, s_light));
+#else
+  base = rgbw_scale(base, s_view);
+#endif
+#endif
+  result = base;
+#endif
+
+  /* Sheen layer: 000 (ratified), or 001's additive (1 - reflectance) blend for draft lanes. */
+#if BRDFCL_HAS_SHEEN && (BRDFCL_LOBE == BRDFCL_LOBE_ALL || BRDFCL_LOBE == BRDFCL_LOBE_SHEEN)
+  {
+    realw dv = sheen_dv(hxy2, hn2, NdotL, NdotV, m.sheen_alpha);
+#if BRDFCL_HAS_DRAFT && !(BRDFCL_SHEEN_DIST == BRDFCL_SHEEN_DIST_CHARLIE && BRDFCL_SHEEN_VIS == BRDFCL_SHEEN_VIS_ASHIKHMIN)
+    /* The draft always uses Charlie D with Ashikhmin V, whatever the ratified options say. */
+    realw dv_draft = D_Charlie(hxy2, hn2, m.sheen_alpha) * V_Ashikhmin(NdotL, NdotV);
+    dv = select(dv, dv_draft, m.draft > 0.5f);
+#endif
+    realw k = m.sheen_weight * dv;
+    result.r += m.sheen_r * k;
+    result.g += m.sheen_g * k;
+    result.b += m.sheen_b * k;
+  }
+#endif
+
+  /* Clearcoat on top: 004 "Layering", Fresnel on N.V (energy-conserving simple layering). */
+#if BRDFCL_HAS_CLEARCOAT
+  {
+    realw Fc = F_Schlick(0.04f, pow5w(1.0f - V.z));
+    realw coat = m.clearcoat * Fc;
+#if BRDFCL_LOBE == BRDFCL_LOBE_CLEARCOAT
+    result = rgbw_splat(0.0f);
+#else
+    result = rgbw_scale(result, 1.0f - coat);
+#endif
+#if BRDFCL_LOBE == BRDFCL_LOBE_ALL || BRDFCL_LOBE == BRDFCL_LOBE_CLEARCOAT
+    realw cc = D_GGX(hxy2, hn2, m.clearcoat_alpha) * V_SmithGGXCorrelated(NdotL, NdotV, m.clearcoat_alpha);
+    realw add = coat * cc;
+    result.r += add;
+    result.g += add;
+    result.b += add;
+#endif
+  }
+#endif
+
+  result.r = keep_or_zero(result.r, valid);
+  result.g = keep_or_zero(result.g, valid);
+  result.b = keep_or_zero(result.b, valid);
+  return result;
+}
+
+#endif

@@ -1,0 +1,95 @@
+/* The microfacet terms, one small function each (letter + model), over width-generic lanes.
+   Angles come in as components of the UNNORMALIZED half vector h = L + V in the shading frame:
+   sin^2 from the tangent components and cos^2 from the normal one keep N.H -> 1 exact in float. */
+#ifndef BRDFCL_TERMS_H
+#define BRDFCL_TERMS_H
+
+#include "common/lanes.h"
+
+/* Burley 2012 anisotropic GGX; 002_aa19eb57033fc98d.txt "Anisotropy". ht, hb, hn: h on T', B', N;
+   h2 = |h|^2. With at == ab == alpha it is glTF Appendix B's isotropic D_GGX. */
+BRDF_FN realw D_GGX_Anisotropic(realw ht, realw hb, realw hn, realw h2, realw at, realw ab) {
+  realw t = ht / at, b = hb / ab;
+  realw d = t * t + b * b + hn * hn;  /* = |h|^2 ((H.T/at)^2 + (H.B/ab)^2 + (H.N)^2) */
+  return (h2 * h2) / (M_PI_F * at * ab * d * d);
+}
+
+/* Walter et al. 2007 GGX; glTF 2.0 Appendix B "Microfacet Surfaces". hxy2 = hx^2 + hy^2. */
+BRDF_FN realw D_GGX(realw hxy2, realw hn2, realw alpha) {
+  realw a2 = alpha * alpha;
+  realw d = hxy2 + hn2 * a2;
+  realw h2 = hxy2 + hn2;
+  return a2 * h2 * h2 / (M_PI_F * d * d);
+}
+
+/* Heitz 2014 height-correlated Smith, anisotropic form; 002 "Individual lights". */
+BRDF_FN realw V_GGX_Anisotropic(realw NdotL, realw NdotV, realw TdotV, realw BdotV, realw TdotL,
+                                realw BdotL, realw at, realw ab) {
+  realw tv = at * TdotV, bv = ab * BdotV, tl = at * TdotL, bl = ab * BdotL;
+  realw GGXV = NdotL * sqrt(tv * tv + bv * bv + NdotV * NdotV);
+  realw GGXL = NdotV * sqrt(tl * tl + bl * bl + NdotL * NdotL);
+  return 0.5f / (GGXV + GGXL);
+}
+
+/* Heitz 2014 height-correlated Smith; glTF 2.0 Appendix B "Microfacet Surfaces". */
+BRDF_FN realw V_SmithGGXCorrelated(realw NdotL, realw NdotV, realw alpha) {
+  realw a2 = alpha * alpha;
+  realw GGXV = NdotL * sqrt(NdotV * NdotV * (1.0f - a2) + a2);
+  realw GGXL = NdotV * sqrt(NdotL * NdotL * (1.0f - a2) + a2);
+  return 0.5f / (GGXV + GGXL);
+}
+
+/* Schlick 1994; glTF 2.0 Appendix B. `w` = (1 - |V.H|)^5, computed once by the caller. */
+BRDF_FN realw F_Schlick(realw f0, realw w) { return f0 + (1.0f - f0) * w; }
+
+/* Conty & Kulla 2017 "Charlie" sheen; 000_f98956a39f2e26b4.txt "Sheen distribution".
+   (sin^2)^(1/(2 alpha)) = exp(-log1p(cot^2) / (2 alpha)): no precision loss near N.H = 1 and
+   exact at the large exponents of small alpha. */
+BRDF_FN realw D_Charlie(realw hxy2, realw hn2, realw alpha) {
+  realw inv_r = 1.0f / alpha;
+  realw log_sin2 = -log1p(hn2 / hxy2);
+  return (2.0f + inv_r) * exp(0.5f * inv_r * log_sin2) * (0.5f / M_PI_F);
+}
+
+/* Ashikhmin & Premoze 2007 velvet, inverted Gaussian; 003 "AshikhminD", called with
+   roughness = alpha (m2 = alpha^2). sin^2 below 1e-6 leaves exp(-cot^2/m2) = 0 exactly in float
+   (cot^2/m2 >= 1e6), so the floor only avoids 0/0 at N.H = 1. */
+BRDF_FN realw D_Ashikhmin(realw hxy2, realw hn2, realw alpha) {
+  realw h2 = hxy2 + hn2;
+  realw sin2 = max(hxy2 / h2, 1.0e-6f);
+  realw cos2 = hn2 / h2;
+  realw m2 = alpha * alpha;
+  realw lobe = 4.0f * exp(-cos2 / (sin2 * m2)) / (sin2 * sin2);
+  return (1.0f + lobe) / (M_PI_F * (1.0f + 4.0f * m2));
+}
+
+/* Conty & Kulla 2017 fit of the Charlie Lambda; 000 "Sheen visibility", with its constants. */
+BRDF_FN realw L_CharlieFit(realw x, realw alpha) {
+  realw t = (1.0f - alpha) * (1.0f - alpha);
+  realw a = mix((realw)(21.5473f), (realw)(25.3245f), t);
+  realw b = mix((realw)(3.82987f), (realw)(3.32435f), t);
+  realw c = mix((realw)(0.19823f), (realw)(0.16801f), t);
+  realw d = mix((realw)(-1.97760f), (realw)(-1.27393f), t);
+  realw e = mix((realw)(-4.32054f), (realw)(-4.85967f), t);
+  /* x^c with x = 0 is 0; exp2(c * log2(0)) = exp2(-inf) = 0 keeps that. */
+  return a / (1.0f + b * exp2(c * log2(x))) + d * x + e;
+}
+
+BRDF_FN realw Lambda_Charlie(realw cos_theta, realw alpha) {
+  realw lo = L_CharlieFit(cos_theta, alpha);
+  realw hi = 2.0f * L_CharlieFit((realw)(0.5f), alpha) - L_CharlieFit(1.0f - cos_theta, alpha);
+  return exp(select(hi, lo, cos_theta < 0.5f));
+}
+
+/* Conty & Kulla 2017 height-correlated visibility with the fitted Lambda; 000 "Sheen visibility". */
+BRDF_FN realw V_Charlie(realw NdotL, realw NdotV, realw alpha) {
+  return 1.0f / ((1.0f + Lambda_Charlie(NdotV, alpha) + Lambda_Charlie(NdotL, alpha)) *
+                 (4.0f * NdotV * NdotL));
+}
+
+/* Neubelt & Pettineo 2013, after Ashikhmin & Premoze 2007; 000 "Sheen visibility", 003. */
+BRDF_FN realw V_Ashikhmin(realw NdotL, realw NdotV) {
+  return 1.0f / (4.0f * (NdotL + NdotV - NdotL * NdotV));
+}
+
+#endif

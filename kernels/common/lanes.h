@@ -1,0 +1,57 @@
+/* Width-generic lane types: every BRDF function is written once over `realw`, which is float
+   (BRDFCL_W = 1) or floatN (BRDFCL_W = 2..16). PoCL's work-group vectorizer does not vectorize
+   across work-items through library calls (pow, exp), so wide kernels vectorize by hand instead. */
+#ifndef BRDFCL_LANES_H
+#define BRDFCL_LANES_H
+
+#ifndef BRDFCL_W
+#define BRDFCL_W 16
+#endif
+
+#define BRDF_FN static inline __attribute__((always_inline))
+
+#if BRDFCL_W == 1
+typedef float realw;
+typedef int intw;
+typedef uint uintw;
+#define VLOADW(i, p) ((p)[(i)])
+#define VSTOREW(v, i, p) ((p)[(i)] = (v))
+#define CONVERT_REALW(x) ((float)(x))
+#elif BRDFCL_W == 4
+typedef float4 realw;
+typedef int4 intw;
+typedef uint4 uintw;
+#define VLOADW vload4
+#define VSTOREW vstore4
+#define CONVERT_REALW convert_float4
+#elif BRDFCL_W == 8
+typedef float8 realw;
+typedef int8 intw;
+typedef uint8 uintw;
+#define VLOADW vload8
+#define VSTOREW vstore8
+#define CONVERT_REALW convert_float8
+#elif BRDFCL_W == 16
+typedef float16 realw;
+typedef int16 intw;
+typedef uint16 uintw;
+#define VLOADW vload16
+#define VSTOREW vstore16
+#define CONVERT_REALW convert_float16
+#else
+#error "BRDFCL_W must be 1, 4, 8 or 16"
+#endif
+
+typedef struct { realw x, y, z; } vec3w;
+typedef struct { realw r, g, b; } rgbw;
+
+BRDF_FN realw dot3w(vec3w a, vec3w b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+BRDF_FN rgbw rgbw_scale(rgbw c, realw s) { rgbw o = {c.r * s, c.g * s, c.b * s}; return o; }
+BRDF_FN rgbw rgbw_add(rgbw a, rgbw b) { rgbw o = {a.r + b.r, a.g + b.g, a.b + b.b}; return o; }
+BRDF_FN rgbw rgbw_splat(realw s) { rgbw o = {s, s, s}; return o; }
+BRDF_FN realw pow5w(realw x) { realw x2 = x * x; return x2 * x2 * x; }
+
+/* Lanes where `keep` is false become 0; masked lanes may hold NaN from invalid geometry. */
+BRDF_FN realw keep_or_zero(realw v, intw keep) { return select((realw)(0.0f), v, keep); }
+
+#endif

@@ -1,0 +1,57 @@
+// Runtime tests: device listing, selection errors, include expansion and the program cache.
+#include <gtest/gtest.h>
+
+#include "brdfcl/error.hpp"
+#include "brdfcl/runtime.hpp"
+
+using namespace brdfcl;
+
+TEST(Runtime, ListsAtLeastOneDevice) {
+  auto devices = listDevices();
+  ASSERT_FALSE(devices.empty());
+  EXPECT_FALSE(devices[0].name.empty());
+  EXPECT_GT(devices[0].computeUnits, 0u);
+  EXPECT_GT(devices[0].maxAlloc, 0u);
+}
+
+TEST(Runtime, UnknownDeviceNameIsAnError) {
+  try {
+    Runtime rt("no-such-device-xyz");
+    FAIL() << "expected an error";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.exitCode(), 2);
+    EXPECT_NE(std::string(e.what()).find("no-such-device-xyz"), std::string::npos);
+  }
+}
+
+TEST(Runtime, DeviceIndexOutOfRangeIsAnError) { EXPECT_THROW(Runtime rt("999"), Error); }
+
+TEST(Runtime, IncludesAreExpandedOnce) {
+  auto src = kernelSource("eval.cl");
+  EXPECT_EQ(src.find("#include"), std::string::npos);
+  // material_layout.h is reached through several headers but must appear once.
+  auto first = src.find("typedef struct brdfcl_material");
+  ASSERT_NE(first, std::string::npos);
+  EXPECT_EQ(src.find("typedef struct brdfcl_material", first + 1), std::string::npos);
+}
+
+TEST(Runtime, ProgramCacheReturnsTheSameProgram) {
+  Runtime rt;
+  auto a = rt.program("eval.cl", "-DBRDFCL_W=16");
+  auto b = rt.program("eval.cl", "-DBRDFCL_W=16");
+  EXPECT_EQ(a(), b());
+  auto c = rt.program("eval.cl", "-DBRDFCL_W=8");
+  EXPECT_NE(a(), c());
+}
+
+TEST(Runtime, BuildFailureCarriesTheBuildLog) {
+  Runtime rt;
+  try {
+    rt.program("eval.cl", "-DBRDFCL_W=3");  // lanes.h rejects widths other than 1, 4, 8, 16
+    FAIL() << "expected a build error";
+  } catch (const Error& e) {
+    std::string what = e.what();
+    EXPECT_NE(what.find("build log"), std::string::npos) << what;
+    EXPECT_NE(what.find("BRDFCL_W must be"), std::string::npos) << what;
+  }
+}
