@@ -1,5 +1,5 @@
 /* Bakes the sheen albedo table E(mu, r) = integral over the hemisphere of D V (N.L) dw_L for the
-   white sheen lobe of the batch's sheen options, by a tensor quadrature rule over (N.L, phi) that
+   white sheen lobe of the batch's sheen options, at the nodes mu = s^2, r = t^2 (s, t uniform), by a tensor quadrature rule over (N.L, phi) that
    the host builds (composite Gauss-Legendre, graded towards the grazing peak). One work-item per
    table entry; its lanes run over the phi nodes. */
 #include "brdf/material.h"
@@ -12,8 +12,9 @@ __kernel void bake_sheen_albedo(int size,
                                 __global float* restrict out) {
   int ix = get_global_id(0), iy = get_global_id(1);
   /* N.V is clamped as brdf_material clamps it, so the table answers what the lookup asks. */
-  float mu = max((float)ix / (float)(size - 1), BRDFCL_MIN_COS);
-  float r = (float)iy / (float)(size - 1);
+  float sx = (float)ix / (float)(size - 1), ty = (float)iy / (float)(size - 1);
+  float mu = max(sx * sx, BRDFCL_MIN_COS);
+  float r = ty * ty;
   float alpha = max(r * r, BRDFCL_MIN_SHEEN_ALPHA);
   float vx = sqrt(1.0f - mu * mu);
 

@@ -1,13 +1,14 @@
 /* Lookup of the baked sheen albedo table E(mu, r): mu = N.V (or N.L) along x, r = sheenRoughness
-   along y, both over [0, 1] on a uniform size x size grid, bilinear between nodes. */
+   along y. Nodes sit at mu = s^2, r = t^2 for uniform s, t (dense where E is steep: grazing
+   angles, low roughness); bilinear in (s, t). */
 #ifndef BRDFCL_SHEEN_ALBEDO_H
 #define BRDFCL_SHEEN_ALBEDO_H
 
 #include "common/lanes.h"
 
 static inline float sheen_albedo_texel(__global const float* table, int size, float mu, float r) {
-  float x = clamp(mu, 0.0f, 1.0f) * (float)(size - 1);
-  float y = clamp(r, 0.0f, 1.0f) * (float)(size - 1);
+  float x = sqrt(clamp(mu, 0.0f, 1.0f)) * (float)(size - 1);
+  float y = sqrt(clamp(r, 0.0f, 1.0f)) * (float)(size - 1);
   int x0 = min((int)x, size - 2), y0 = min((int)y, size - 2);
   float fx = x - (float)x0, fy = y - (float)y0;
   __global const float* row0 = table + y0 * size + x0;

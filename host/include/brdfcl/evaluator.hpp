@@ -12,10 +12,11 @@
 
 namespace brdfcl {
 
-// Directional albedo E(mu, r) of the white sheen lobe, tabulated on a uniform grid:
-// mu = N.V in [0, 1] along x (fastest), r = sheenRoughness in [0, 1] along y.
+// Directional albedo E(mu, r) of the white sheen lobe, looked up with mu = N.V (or N.L) and
+// r = sheenRoughness, both in [0, 1]. Nodes sit at mu = s^2, r = t^2 for s, t uniform in [0, 1]
+// (x fastest): E is steepest at grazing angles and low roughness, so the grid is densest there.
 struct SheenAlbedoTable {
-  static constexpr std::size_t kSize = 64;
+  static constexpr std::size_t kSize = 128;
   SheenDistribution distribution;
   SheenVisibility visibility;
   std::size_t width = kSize, height = kSize;
@@ -24,8 +25,14 @@ struct SheenAlbedoTable {
 };
 
 // Bakes E by numerical integration on the device (kernels/sheen_albedo.cl).
+// nodesPerPanel sets the quadrature order (tests double it to prove convergence).
 SheenAlbedoTable bakeSheenAlbedo(Runtime& rt, SheenDistribution d, SheenVisibility v,
-                                 std::size_t size = SheenAlbedoTable::kSize);
+                                 std::size_t size = SheenAlbedoTable::kSize, int nodesPerPanel = 16);
+
+// The table for the default size from the on-disk cache ($XDG_CACHE_HOME or ~/.cache, then
+// brdfcl/), baking and storing it on a miss. The key holds the device, the options and a hash of
+// the kernel source, so a changed kernel never reads a stale table. An unwritable cache is skipped.
+SheenAlbedoTable cachedSheenAlbedo(Runtime& rt, SheenDistribution d, SheenVisibility v);
 
 class Evaluator {
  public:

@@ -1,5 +1,6 @@
-// Directional albedo by a composite Gauss-Legendre rule over (N.L, phi), graded towards grazing
-// light where the sheen lobes live; one grid evaluation per view direction.
+// Directional albedo by a composite Gauss-Legendre rule over the half vector (theta_h, phi_h):
+// dw_L = 4 (V.H) dw_h puts the mirror peak of a near-specular lobe at theta_h = 0, where the
+// panels are graded down to 1e-4 rad, and the sheen lobes' grazing mass at theta_h -> pi/2.
 #include "brdfcl/albedo.hpp"
 
 #include <cmath>
@@ -10,32 +11,38 @@ namespace brdfcl {
 
 std::vector<float> directionalAlbedo(Evaluator& evaluator, const std::vector<MaterialParams>& materials,
                                      const std::vector<float>& viewCosines) {
-  // Narrow specular lobes (alpha down to 1e-3) need the dense panels near the mirror direction;
-  // this rule resolves roughness >= 0.1 to about 1e-3 and is meant for tables, not for proofs.
-  auto cosRule = compositeGaussLegendre({0.0, 0.01, 0.05, 0.2, 0.4, 0.6, 0.8, 0.9, 0.95, 0.99, 1.0}, 12);
+  const auto thetaRule = compositeGaussLegendre(
+      {0.0, 1e-4, 4e-4, 1.6e-3, 6.4e-3, 0.025, 0.1, 0.3, 0.6, 1.0, 1.3, 1.45, 1.52, 1.555, M_PI / 2}, 12);
   // Full circle: a rotated anisotropic lobe is not mirror-symmetric about the plane of V and N.
-  std::vector<double> phiBreaks = {0.0, 0.05, 0.2, 0.5, 1.0, M_PI / 2, 2.2, 2.8, M_PI};
-  for (int i = int(phiBreaks.size()) - 2; i >= 0; --i) phiBreaks.push_back(2 * M_PI - phiBreaks[i]);
-  auto phiRule = compositeGaussLegendre(phiBreaks, 12);
-  const std::size_t nq = cosRule.nodes.size() * phiRule.nodes.size();
+  std::vector<double> phiBreaks;
+  for (int i = 0; i <= 16; ++i) phiBreaks.push_back(2 * M_PI * i / 16);
+  const auto phiRule = compositeGaussLegendre(phiBreaks, 8);
+  const std::size_t nq = thetaRule.nodes.size() * phiRule.nodes.size();
+
   std::vector<float> out(materials.size() * viewCosines.size() * 3, 0.0f);
   for (std::size_t v = 0; v < viewCosines.size(); ++v) {
     const double mu = viewCosines[v];
-    const double sinV = std::sqrt(std::max(0.0, 1.0 - mu * mu));
+    const double V[3] = {std::sqrt(std::max(0.0, 1.0 - mu * mu)), 0.0, mu};
     Samples s;
     std::vector<double> w;
     s.L.reserve(3 * nq);
     s.V.reserve(3 * nq);
-    for (std::size_t i = 0; i < cosRule.nodes.size(); ++i) {
-      const double u = cosRule.nodes[i], sinL = std::sqrt(1.0 - u * u);
+    w.reserve(nq);
+    for (std::size_t i = 0; i < thetaRule.nodes.size(); ++i) {
+      const double th = thetaRule.nodes[i], sh = std::sin(th), ch = std::cos(th);
       for (std::size_t j = 0; j < phiRule.nodes.size(); ++j) {
-        const double phi = phiRule.nodes[j];
-        s.L.insert(s.L.end(), {float(sinL * std::cos(phi)), float(sinL * std::sin(phi)), float(u)});
-        s.V.insert(s.V.end(), {float(sinV), 0.0f, float(mu)});
-        w.push_back(cosRule.weights[i] * phiRule.weights[j] * u);
+        const double ph = phiRule.nodes[j];
+        const double H[3] = {sh * std::cos(ph), sh * std::sin(ph), ch};
+        const double VdotH = V[0] * H[0] + V[1] * H[1] + V[2] * H[2];
+        double L[3];
+        for (int c = 0; c < 3; ++c) L[c] = 2.0 * VdotH * H[c] - V[c];
+        const bool valid = VdotH > 0.0 && L[2] > 0.0;
+        s.L.insert(s.L.end(), {float(L[0]), float(L[1]), valid ? float(L[2]) : -1.0f});
+        s.V.insert(s.V.end(), {float(V[0]), float(V[1]), float(V[2])});
+        w.push_back(valid ? thetaRule.weights[i] * phiRule.weights[j] * sh * 4.0 * VdotH * L[2] : 0.0);
       }
     }
-    auto f = evaluator.evaluateGrid(materials, s);
+    const auto f = evaluator.evaluateGrid(materials, s);
     for (std::size_t m = 0; m < materials.size(); ++m) {
       double acc[3] = {0, 0, 0};
       for (std::size_t q = 0; q < nq; ++q)

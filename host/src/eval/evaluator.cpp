@@ -76,7 +76,7 @@ Evaluator::Batch Evaluator::prepare(const std::vector<MaterialParams>& materials
 const SheenAlbedoTable& Evaluator::sheenAlbedo() {
   if (!table_)
     table_ = std::make_unique<SheenAlbedoTable>(
-        bakeSheenAlbedo(rt_, options_.sheenDistribution, options_.sheenVisibility));
+        cachedSheenAlbedo(rt_, options_.sheenDistribution, options_.sheenVisibility));
   return *table_;
 }
 

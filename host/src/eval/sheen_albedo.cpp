@@ -2,11 +2,16 @@
 // host-side bilinear lookup that mirrors the kernels' one (kernels/brdf/sheen_albedo.h).
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <functional>
 
 #include <fmt/format.h>
 
 #include "brdfcl/error.hpp"
 #include "brdfcl/evaluator.hpp"
+#include "brdfcl/io.hpp"
 #include "eval/quadrature.hpp"
 #include "model/pack.hpp"
 
@@ -14,15 +19,16 @@ namespace brdfcl {
 
 namespace {
 // Panels graded towards the grazing corner N.L -> 0, where a small-alpha Charlie lobe puts its
-// mass, and towards phi = pi (L opposite V). 16 nodes a panel: doubling changes no entry by 1e-6.
+// mass, and towards phi = pi (L opposite V).
 const std::vector<double> kCosBreaks = {0.0, 1e-3, 1e-2, 0.05, 0.2, 0.5, 1.0};
 const std::vector<double> kPhiBreaks = {0.0, M_PI / 2, 3 * M_PI / 4, 7 * M_PI / 8, 15 * M_PI / 16, 31 * M_PI / 32, M_PI};
-constexpr int kNodesPerPanel = 16;
+// Part of the cache key: bump when the quadrature above or the table layout changes.
+constexpr const char* kBakeVersion = "graded-GL16 sqrt-warp v1";
 }  // namespace
 
 float SheenAlbedoTable::lookup(float mu, float sheenRoughness) const {
-  const float x = std::clamp(mu, 0.0f, 1.0f) * float(width - 1);
-  const float y = std::clamp(sheenRoughness, 0.0f, 1.0f) * float(height - 1);
+  const float x = std::sqrt(std::clamp(mu, 0.0f, 1.0f)) * float(width - 1);
+  const float y = std::sqrt(std::clamp(sheenRoughness, 0.0f, 1.0f)) * float(height - 1);
   const int x0 = std::min(int(x), int(width) - 2), y0 = std::min(int(y), int(height) - 2);
   const float fx = x - float(x0), fy = y - float(y0);
   const float* row0 = values.data() + std::size_t(y0) * width + x0;
@@ -32,7 +38,8 @@ float SheenAlbedoTable::lookup(float mu, float sheenRoughness) const {
   return top + (bottom - top) * fy;
 }
 
-SheenAlbedoTable bakeSheenAlbedo(Runtime& rt, SheenDistribution d, SheenVisibility v, std::size_t size) {
+SheenAlbedoTable bakeSheenAlbedo(Runtime& rt, SheenDistribution d, SheenVisibility v, std::size_t size,
+                                 int nodesPerPanel) {
   if (size < 2) throw Error(fmt::format("sheen albedo table size {} is too small; use at least 2", size));
   SheenAlbedoTable table;
   table.distribution = d;
@@ -41,8 +48,8 @@ SheenAlbedoTable bakeSheenAlbedo(Runtime& rt, SheenDistribution d, SheenVisibili
   table.values.assign(size * size, 0.0f);
 
   // phi over [0, pi] with weight x2 (the lobe is symmetric about the plane of V and N).
-  auto cosRule = compositeGaussLegendre(kCosBreaks, kNodesPerPanel);
-  auto phiRule = compositeGaussLegendre(kPhiBreaks, kNodesPerPanel);
+  auto cosRule = compositeGaussLegendre(kCosBreaks, nodesPerPanel);
+  auto phiRule = compositeGaussLegendre(kPhiBreaks, nodesPerPanel);
   std::vector<float> u(cosRule.nodes.begin(), cosRule.nodes.end()), uw(cosRule.weights.begin(), cosRule.weights.end());
   std::vector<float> pc, ps, pw;
   for (std::size_t i = 0; i < phiRule.nodes.size(); ++i) {
@@ -71,6 +78,44 @@ SheenAlbedoTable bakeSheenAlbedo(Runtime& rt, SheenDistribution d, SheenVisibili
     rt.queue().enqueueReadBuffer(out, CL_TRUE, 0, table.values.size() * 4, table.values.data());
   } catch (const cl::Error&) {
     rethrowOpenCL("baking the sheen albedo table");
+  }
+  return table;
+}
+
+namespace {
+std::filesystem::path cacheDir() {
+  if (const char* x = std::getenv("XDG_CACHE_HOME"); x && *x) return std::filesystem::path(x) / "brdfcl";
+  if (const char* h = std::getenv("HOME"); h && *h) return std::filesystem::path(h) / ".cache" / "brdfcl";
+  return {};
+}
+}  // namespace
+
+SheenAlbedoTable cachedSheenAlbedo(Runtime& rt, SheenDistribution d, SheenVisibility v) {
+  const std::size_t n = SheenAlbedoTable::kSize;
+  const auto dir = cacheDir();
+  const std::size_t key = std::hash<std::string>{}(kernelSource("sheen_albedo.cl") + kBakeVersion + rt.info().name +
+                                                   rt.info().platform + rt.info().openclC);
+  const auto file = dir.empty() ? std::filesystem::path()
+                                : dir / fmt::format("sheen_e_{}_{}_{}_{:016x}.f32", toString(d), toString(v), n, key);
+  if (!file.empty()) {
+    std::ifstream in(file, std::ios::binary);
+    SheenAlbedoTable t{d, v, n, n, std::vector<float>(n * n)};
+    if (in.read(reinterpret_cast<char*>(t.values.data()), std::streamsize(t.values.size() * 4)) &&
+        in.peek() == std::char_traits<char>::eof())
+      return t;
+  }
+  auto table = bakeSheenAlbedo(rt, d, v, n);
+  if (!file.empty()) {
+    try {
+      std::filesystem::create_directories(dir);
+      writeAtomically(file.string(), [&](const std::string& tmp) {
+        std::ofstream out(tmp, std::ios::binary);
+        out.write(reinterpret_cast<const char*>(table.values.data()), std::streamsize(table.values.size() * 4));
+        if (!out.flush()) throw Error("cannot write " + tmp);
+      });
+    } catch (const std::exception&) {
+      // A read-only or full cache only costs the next run a re-bake.
+    }
   }
   return table;
 }
