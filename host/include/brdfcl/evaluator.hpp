@@ -16,7 +16,7 @@ namespace brdfcl {
 // r = sheenRoughness, both in [0, 1]. Nodes sit at mu = s^2, r = t^2 for s, t uniform in [0, 1]
 // (x fastest): E is steepest at grazing angles and low roughness, so the grid is densest there.
 struct SheenAlbedoTable {
-  static constexpr std::size_t kSize = 128;
+  static constexpr std::size_t kSize = 320;
   SheenDistribution distribution;
   SheenVisibility visibility;
   std::size_t width = kSize, height = kSize;
@@ -27,7 +27,7 @@ struct SheenAlbedoTable {
 // Bakes E by numerical integration on the device (kernels/sheen_albedo.cl).
 // nodesPerPanel sets the quadrature order (tests double it to prove convergence).
 SheenAlbedoTable bakeSheenAlbedo(Runtime& rt, SheenDistribution d, SheenVisibility v,
-                                 std::size_t size = SheenAlbedoTable::kSize, int nodesPerPanel = 16);
+                                 std::size_t size = SheenAlbedoTable::kSize, int nodesPerPanel = 12);
 
 // The table for the default size from the on-disk cache ($XDG_CACHE_HOME or ~/.cache, then
 // brdfcl/), baking and storing it on a miss. The key holds the device, the options and a hash of

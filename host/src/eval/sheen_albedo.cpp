@@ -23,7 +23,7 @@ namespace {
 const std::vector<double> kCosBreaks = {0.0, 1e-3, 1e-2, 0.05, 0.2, 0.5, 1.0};
 const std::vector<double> kPhiBreaks = {0.0, M_PI / 2, 3 * M_PI / 4, 7 * M_PI / 8, 15 * M_PI / 16, 31 * M_PI / 32, M_PI};
 // Part of the cache key: bump when the quadrature above or the table layout changes.
-constexpr const char* kBakeVersion = "graded-GL16 sqrt-warp v1";
+constexpr const char* kBakeVersion = "graded-GL12 sqrt-warp v2";
 }  // namespace
 
 float SheenAlbedoTable::lookup(float mu, float sheenRoughness) const {
@@ -56,6 +56,12 @@ SheenAlbedoTable bakeSheenAlbedo(Runtime& rt, SheenDistribution d, SheenVisibili
     pc.push_back(float(std::cos(phiRule.nodes[i])));
     ps.push_back(float(std::sin(phiRule.nodes[i])));
     pw.push_back(float(2.0 * phiRule.weights[i]));
+  }
+  // The kernel reads phi nodes 16 lanes at a time: pad with harmless zero-weight nodes.
+  while (pc.size() % 16 != 0) {
+    pc.push_back(1.0f);
+    ps.push_back(0.0f);
+    pw.push_back(0.0f);
   }
 
   EvalOptions o;

@@ -1,0 +1,329 @@
+// readMaterials/parseMaterials: glTF 2.0 materials (core metallic-roughness, KHR_materials_sheen
+// ratified or draft, KHR_materials_clearcoat, KHR_materials_anisotropy) into MaterialParams.
+// Every rejection is one line naming the file and the JSON path of the offending key.
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstddef>
+#include <cstring>
+#include <initializer_list>
+#include <limits>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "brdfcl/error.hpp"
+#include "brdfcl/io.hpp"
+#include "brdfcl/material.hpp"
+
+namespace brdfcl {
+namespace {
+
+using json = nlohmann::json;
+using Warn = std::function<void(const std::string&)>;
+
+// POSIX calls because iostreams do not say why opening failed (samples.cpp has its own variant
+// that maps large files). Returns 0 or an errno value.
+int readWholeFile(const std::string& path, std::string& out) {
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) return errno;
+  struct stat st {};
+  if (::fstat(fd, &st) != 0 || S_ISDIR(st.st_mode)) {
+    const int err = S_ISDIR(st.st_mode) ? EISDIR : errno;
+    ::close(fd);
+    return err;
+  }
+  out.clear();
+  // st_size is only a hint: pipes and /proc files report 0, so keep reading until EOF.
+  std::size_t capacity = S_ISREG(st.st_mode) && st.st_size > 0 ? static_cast<std::size_t>(st.st_size) + 1 : 65536;
+  out.resize(capacity);
+  std::size_t used = 0;
+  for (;;) {
+    if (used == out.size()) out.resize(out.size() * 2);
+    const ssize_t n = ::read(fd, &out[used], out.size() - used);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      const int err = errno;
+      ::close(fd);
+      return err;
+    }
+    if (n == 0) break;
+    used += static_cast<std::size_t>(n);
+  }
+  ::close(fd);
+  out.resize(used);
+  return 0;
+}
+
+// Keeps messages on one line whatever a name or string value contains.
+std::string printable(const std::string& s, std::size_t maxLength = 60) {
+  std::string out;
+  for (char c : s) {
+    if (out.size() >= maxLength) {
+      out += "...";
+      break;
+    }
+    out += (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) ? '?' : c;
+  }
+  return out;
+}
+
+std::string formatNumber(double d) {
+  if (std::isnan(d)) return "nan";
+  if (std::isinf(d)) return d > 0 ? "inf" : "-inf";
+  char buf[64];
+  // Whole numbers print as written (12, 10000000000), not as 1e+10.
+  const bool whole = std::floor(d) == d && std::fabs(d) < 1e17;
+  const auto r = whole ? std::to_chars(buf, buf + sizeof buf, d, std::chars_format::fixed)
+                       : std::to_chars(buf, buf + sizeof buf, d);
+  return std::string(buf, r.ptr);
+}
+
+// What the user wrote, for "got ..." in messages.
+std::string describe(const json& v) {
+  switch (v.type()) {
+    case json::value_t::number_float:
+    case json::value_t::number_integer:
+    case json::value_t::number_unsigned:
+      return formatNumber(v.get<double>());
+    case json::value_t::string:
+      return "string \"" + printable(v.get_ref<const std::string&>()) + "\"";
+    case json::value_t::boolean:
+      return v.get<bool>() ? "true" : "false";
+    case json::value_t::null:
+      return "null";
+    case json::value_t::array:
+      return "an array of " + std::to_string(v.size()) + (v.size() == 1 ? " element" : " elements");
+    case json::value_t::object:
+      return "an object";
+    default:
+      return "an unsupported value";
+  }
+}
+
+// Drops nlohmann's "[json.exception.parse_error.101] " tag, which means nothing to a user.
+std::string withoutTag(std::string what) {
+  const auto tag = what.find("] ");
+  if (what.rfind("[json.exception", 0) == 0 && tag != std::string::npos) what.erase(0, tag + 2);
+  return what;
+}
+
+enum class Range { Unit, NonNegative, Finite };
+
+const char* expectedNumber(Range r) {
+  switch (r) {
+    case Range::Unit:
+      return "a number in [0, 1]";
+    case Range::NonNegative:
+      return "a number >= 0";
+    case Range::Finite:
+      break;
+  }
+  return "a finite number";
+}
+
+class MaterialReader {
+ public:
+  MaterialReader(const std::string& source, const Warn& warn) : source_(printable(source, 300)), warn_(warn) {}
+
+  std::vector<MaterialParams> read(const std::string& text) {
+    json doc;
+    try {
+      doc = json::parse(text);
+    } catch (const json::out_of_range& e) {
+      // nlohmann rejects literals beyond double range (1e999) without a position; point at the
+      // first occurrence of the literal so the user can find it.
+      const std::string what = withoutTag(e.what());
+      std::string where;
+      const auto q1 = what.find('\''), q2 = what.rfind('\'');
+      if (q1 != std::string::npos && q2 > q1 + 1) {
+        const auto at = text.find(what.substr(q1 + 1, q2 - q1 - 1));
+        if (at != std::string::npos)
+          where = " at line " +
+                  std::to_string(1 + std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(at), '\n'));
+      }
+      throw Error(source_ + ": invalid JSON: " + printable(what, 300) + where + "; numbers must be finite");
+    } catch (const json::exception& e) {
+      // parse_error's text already says "parse error at line L, column C: ...".
+      throw Error(source_ + ": invalid JSON: " + printable(withoutTag(e.what()), 300));
+    }
+    if (!doc.is_object())
+      throw Error(source_ + ": expected a JSON object with a \"materials\" array at the top level, got " +
+                  describe(doc));
+    const auto it = doc.find("materials");
+    if (it == doc.end())
+      throw Error(source_ +
+                  ": no \"materials\" array at the top level; expected a glTF 2.0 document or "
+                  "{\"materials\": [...]}");
+    if (!it->is_array()) fail("materials", "expected an array of material objects, got " + describe(*it));
+    if (it->empty()) fail("materials", "the array is empty; at least one material is needed");
+
+    std::vector<MaterialParams> out;
+    out.reserve(it->size());
+    for (std::size_t i = 0; i < it->size(); ++i) out.push_back(material((*it)[i], i));
+    return out;
+  }
+
+ private:
+  [[noreturn]] void fail(const std::string& path, const std::string& message) const {
+    throw Error(source_ + ": " + path + ": " + message);
+  }
+
+  const json* object(const json& parent, const char* key, const std::string& path) const {
+    const auto it = parent.find(key);
+    if (it == parent.end()) return nullptr;
+    if (!it->is_object()) fail(path, "expected an object, got " + describe(*it));
+    return &*it;
+  }
+
+  float number(const json& v, const std::string& path, Range range) const {
+    const char* expected = expectedNumber(range);
+    if (!v.is_number()) fail(path, std::string("expected ") + expected + ", got " + describe(v));
+    // nlohmann turns overflowing literals such as 1e999 into inf; glTF has no infinities.
+    const double d = v.get<double>();
+    bool ok = std::isfinite(d);
+    if (ok && range == Range::Unit) ok = d >= 0.0 && d <= 1.0;
+    if (ok && range == Range::NonNegative) ok = d >= 0.0;
+    if (!ok) fail(path, std::string("expected ") + expected + ", got " + formatNumber(d));
+    if (std::fabs(d) > std::numeric_limits<float>::max())
+      fail(path, std::string("expected ") + expected + ", got " + formatNumber(d) + " (too large for float)");
+    return static_cast<float>(d);
+  }
+
+  // glTF colors are RGB or RGBA arrays; only RGB matters for the BRDF.
+  Rgb color(const json& v, const std::string& path, std::size_t length, Range range) const {
+    const std::string expected = "expected an array of " + std::to_string(length) + " numbers" +
+                                 (range == Range::Unit          ? " in [0, 1]"
+                                  : range == Range::NonNegative ? " >= 0"
+                                                                : "");
+    if (!v.is_array() || v.size() != length) fail(path, expected + ", got " + describe(v));
+    Rgb rgb{};
+    for (std::size_t c = 0; c < length; ++c) {
+      const float x = number(v[c], path + "[" + std::to_string(c) + "]", range);
+      if (c < 3) rgb[c] = x;
+    }
+    return rgb;
+  }
+
+  template <typename Apply>
+  void optional(const json& obj, const char* key, const std::string& path, Apply apply) const {
+    const auto it = obj.find(key);
+    if (it != obj.end()) apply(*it, path + "." + key);
+  }
+
+  static void noteTextures(const json& obj, std::initializer_list<const char*> keys, std::vector<std::string>& found) {
+    for (const char* key : keys)
+      if (obj.contains(key)) found.emplace_back(key);
+  }
+
+  MaterialParams material(const json& m, std::size_t index) const {
+    const std::string base = "materials[" + std::to_string(index) + "]";
+    if (!m.is_object()) fail(base, "expected a material object, got " + describe(m));
+
+    MaterialParams p;
+    std::vector<std::string> textures;
+    optional(m, "name", base, [&](const json& v, const std::string& path) {
+      if (!v.is_string()) fail(path, "expected a string, got " + describe(v));
+      p.name = v.get<std::string>();
+    });
+    noteTextures(m, {"normalTexture", "occlusionTexture", "emissiveTexture"}, textures);
+
+    if (const json* pbr = object(m, "pbrMetallicRoughness", base + ".pbrMetallicRoughness")) {
+      const std::string path = base + ".pbrMetallicRoughness";
+      optional(*pbr, "baseColorFactor", path,
+               [&](const json& v, const std::string& at) { p.baseColor = color(v, at, 4, Range::Unit); });
+      optional(*pbr, "metallicFactor", path,
+               [&](const json& v, const std::string& at) { p.metallic = number(v, at, Range::Unit); });
+      optional(*pbr, "roughnessFactor", path,
+               [&](const json& v, const std::string& at) { p.roughness = number(v, at, Range::Unit); });
+      noteTextures(*pbr, {"baseColorTexture", "metallicRoughnessTexture"}, textures);
+    }
+    optional(m, "emissiveFactor", base,
+             [&](const json& v, const std::string& at) { p.emissive = color(v, at, 3, Range::NonNegative); });
+
+    if (const json* ext = object(m, "extensions", base + ".extensions")) {
+      const std::string extPath = base + ".extensions";
+      if (const json* sheen = object(*ext, "KHR_materials_sheen", extPath + ".KHR_materials_sheen"))
+        readSheen(*sheen, extPath + ".KHR_materials_sheen", p, textures);
+      const std::string ccPath = extPath + ".KHR_materials_clearcoat";
+      if (const json* cc = object(*ext, "KHR_materials_clearcoat", ccPath)) {
+        optional(*cc, "clearcoatFactor", ccPath,
+                 [&](const json& v, const std::string& at) { p.clearcoat = number(v, at, Range::Unit); });
+        optional(*cc, "clearcoatRoughnessFactor", ccPath,
+                 [&](const json& v, const std::string& at) { p.clearcoatRoughness = number(v, at, Range::Unit); });
+        noteTextures(*cc, {"clearcoatTexture", "clearcoatRoughnessTexture", "clearcoatNormalTexture"}, textures);
+      }
+      const std::string anPath = extPath + ".KHR_materials_anisotropy";
+      if (const json* an = object(*ext, "KHR_materials_anisotropy", anPath)) {
+        optional(*an, "anisotropyStrength", anPath,
+                 [&](const json& v, const std::string& at) { p.anisotropyStrength = number(v, at, Range::Unit); });
+        optional(*an, "anisotropyRotation", anPath,
+                 [&](const json& v, const std::string& at) { p.anisotropyRotation = number(v, at, Range::Finite); });
+        noteTextures(*an, {"anisotropyTexture"}, textures);
+      }
+      // Other extensions (transmission, volume, ...) are not part of this BRDF: ignored silently.
+    }
+
+    if (!textures.empty() && warn_) {
+      std::string list;
+      for (const auto& t : textures) list += (list.empty() ? "" : ", ") + t;
+      const std::string who = p.name.empty() ? base : base + " ('" + printable(p.name) + "')";
+      warn_(source_ + ": " + who + ": texture references are ignored (" + list + "); using factors only");
+    }
+    return p;
+  }
+
+  // The draft and the ratified extension share a name but not a single key; the keys decide.
+  void readSheen(const json& s, const std::string& path, MaterialParams& p, std::vector<std::string>& textures) const {
+    static const char* const draftKeys[] = {"intensityFactor", "colorFactor", "colorIntensityTexture"};
+    static const char* const ratifiedKeys[] = {"sheenColorFactor", "sheenRoughnessFactor", "sheenColorTexture",
+                                               "sheenRoughnessTexture"};
+    std::string draftSeen, ratifiedSeen;
+    for (const char* k : draftKeys)
+      if (s.contains(k)) draftSeen += (draftSeen.empty() ? "" : ", ") + std::string(k);
+    for (const char* k : ratifiedKeys)
+      if (s.contains(k)) ratifiedSeen += (ratifiedSeen.empty() ? "" : ", ") + std::string(k);
+    if (!draftSeen.empty() && !ratifiedSeen.empty())
+      fail(path, "mixes draft keys (" + draftSeen + ") with ratified keys (" + ratifiedSeen +
+                     "); use either intensityFactor/colorFactor or sheenColorFactor/sheenRoughnessFactor");
+
+    if (!draftSeen.empty()) {
+      p.draftSheen = true;
+      optional(s, "intensityFactor", path,
+               [&](const json& v, const std::string& at) { p.draftIntensity = number(v, at, Range::NonNegative); });
+      optional(s, "colorFactor", path,
+               [&](const json& v, const std::string& at) { p.draftColor = color(v, at, 3, Range::Unit); });
+      noteTextures(s, {"colorIntensityTexture"}, textures);
+    } else {
+      optional(s, "sheenColorFactor", path,
+               [&](const json& v, const std::string& at) { p.sheenColor = color(v, at, 3, Range::Unit); });
+      optional(s, "sheenRoughnessFactor", path,
+               [&](const json& v, const std::string& at) { p.sheenRoughness = number(v, at, Range::Unit); });
+      noteTextures(s, {"sheenColorTexture", "sheenRoughnessTexture"}, textures);
+    }
+  }
+
+  const std::string source_;
+  const Warn& warn_;
+};
+
+}  // namespace
+
+std::vector<MaterialParams> parseMaterials(const std::string& jsonText, const std::string& sourceName,
+                                           const Warn& warn) {
+  return MaterialReader(sourceName, warn).read(jsonText);
+}
+
+std::vector<MaterialParams> readMaterials(const std::string& path, const Warn& warn) {
+  std::string text;
+  if (const int err = readWholeFile(path, text))
+    throw Error("cannot read materials file '" + printable(path, 300) + "': " + std::strerror(err));
+  return parseMaterials(text, path, warn);
+}
+
+}  // namespace brdfcl

@@ -1,0 +1,72 @@
+// Spellings of the EvalOptions enums as the CLI accepts and prints them (material.hpp).
+// One table per enum keeps parse, toString and the "use a, b or c" hint from drifting apart.
+#include <cstddef>
+#include <string>
+
+#include "brdfcl/error.hpp"
+#include "brdfcl/material.hpp"
+
+namespace brdfcl {
+namespace {
+
+template <typename E>
+struct Spelling {
+  E value;
+  const char* name;
+};
+
+constexpr Spelling<SheenVisibility> kVisibility[] = {{SheenVisibility::Charlie, "charlie"},
+                                                     {SheenVisibility::Ashikhmin, "ashikhmin"}};
+constexpr Spelling<SheenDistribution> kDistribution[] = {{SheenDistribution::Charlie, "charlie"},
+                                                         {SheenDistribution::Ashikhmin, "ashikhmin"}};
+constexpr Spelling<SheenScaling> kScaling[] = {
+    {SheenScaling::Min, "min"}, {SheenScaling::View, "view"}, {SheenScaling::None, "none"}};
+constexpr Spelling<Lobe> kLobe[] = {{Lobe::All, "all"},
+                                    {Lobe::Diffuse, "diffuse"},
+                                    {Lobe::Specular, "specular"},
+                                    {Lobe::Sheen, "sheen"},
+                                    {Lobe::Clearcoat, "clearcoat"}};
+
+// The message must stay on one line even if the argument does not.
+std::string printable(const std::string& s) {
+  std::string out = s;
+  for (char& c : out)
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
+  return out;
+}
+
+template <typename E, std::size_t N>
+E parseFrom(const Spelling<E> (&table)[N], const char* option, const std::string& s) {
+  for (const auto& entry : table)
+    if (s == entry.name) return entry.value;
+  // "use a, b or c": the message lists every accepted value so the user needs no manual.
+  std::string accepted;
+  for (std::size_t i = 0; i < N; ++i) {
+    if (i > 0) accepted += (i + 1 == N) ? " or " : ", ";
+    accepted += table[i].name;
+  }
+  throw Error(std::string("unknown ") + option + " value '" + printable(s) + "'; use " + accepted);
+}
+
+template <typename E, std::size_t N>
+const char* nameOf(const Spelling<E> (&table)[N], E value) {
+  for (const auto& entry : table)
+    if (entry.value == value) return entry.name;
+  return "?";  // only reachable with a value cast from an out-of-range integer
+}
+
+}  // namespace
+
+SheenVisibility parseSheenVisibility(const std::string& s) { return parseFrom(kVisibility, "--sheen-visibility", s); }
+SheenDistribution parseSheenDistribution(const std::string& s) {
+  return parseFrom(kDistribution, "--sheen-distribution", s);
+}
+SheenScaling parseSheenScaling(const std::string& s) { return parseFrom(kScaling, "--sheen-scaling", s); }
+Lobe parseLobe(const std::string& s) { return parseFrom(kLobe, "--lobe", s); }
+
+const char* toString(SheenVisibility v) { return nameOf(kVisibility, v); }
+const char* toString(SheenDistribution d) { return nameOf(kDistribution, d); }
+const char* toString(SheenScaling s) { return nameOf(kScaling, s); }
+const char* toString(Lobe l) { return nameOf(kLobe, l); }
+
+}  // namespace brdfcl
