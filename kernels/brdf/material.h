@@ -106,6 +106,12 @@ BRDF_FN rgbw brdf_material(const material_lanes m, vec3w L, vec3w V, __global co
   realw NdotL = max(L.z, BRDFCL_MIN_COS), NdotV = max(V.z, BRDFCL_MIN_COS);
 
   vec3w h = {L.x + V.x, L.y + V.y, L.z + V.z};
+  /* L = -V with both within ~1e-15 of the horizon: |L + V|^2 underflows and H is undefined.
+     Taking H = N there keeps f finite (documented clamp; such pairs sit far outside the domain). */
+  intw degenerate = (h.x * h.x + h.y * h.y + h.z * h.z) < 1.0e-30f;
+  h.x = select(h.x, (realw)(0.0f), degenerate);
+  h.y = select(h.y, (realw)(0.0f), degenerate);
+  h.z = select(h.z, (realw)(1.0f), degenerate);
   realw hxy2 = h.x * h.x + h.y * h.y, hn2 = h.z * h.z, h2 = hxy2 + hn2;
   realw inv_h = rsqrt(h2);
   /* 1 - V.H = |V - H|^2 / 2 for unit vectors: no cancellation as H -> V. */

@@ -937,3 +937,16 @@ TEST_F(Io, WriteAtomicallyRelativePathInCurrentDirectory) {
 }
 
 }  // namespace
+
+// 001's own velvet example spells the intensity "sheenFactor": it must read as the draft.
+TEST_F(Io, DraftSheenFactorExampleIsTheDraft) {
+  const auto m = brdfcl::parseMaterials(
+      R"({"materials":[{"name":"velvet","extensions":{"KHR_materials_sheen":{"sheenFactor":0.5}}}]})", "draft.json");
+  ASSERT_EQ(m.size(), 1u);
+  EXPECT_TRUE(m[0].draftSheen);
+  EXPECT_FLOAT_EQ(m[0].draftIntensity, 0.5f);
+  EXPECT_THROW(brdfcl::parseMaterials(
+                   R"({"materials":[{"extensions":{"KHR_materials_sheen":{"sheenFactor":1,"intensityFactor":1}}}]})",
+                   "both.json"),
+               brdfcl::Error);
+}

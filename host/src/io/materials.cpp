@@ -280,7 +280,9 @@ class MaterialReader {
 
   // The draft and the ratified extension share a name but not a single key; the keys decide.
   void readSheen(const json& s, const std::string& path, MaterialParams& p, std::vector<std::string>& textures) const {
-    static const char* const draftKeys[] = {"intensityFactor", "colorFactor", "colorIntensityTexture"};
+    // "sheenFactor" is the draft's own example and disable rule (001) for what its table calls
+    // intensityFactor: read it as that, so the draft's velvet example renders as velvet.
+    static const char* const draftKeys[] = {"intensityFactor", "sheenFactor", "colorFactor", "colorIntensityTexture"};
     static const char* const ratifiedKeys[] = {"sheenColorFactor", "sheenRoughnessFactor", "sheenColorTexture",
                                                "sheenRoughnessTexture"};
     std::string draftSeen, ratifiedSeen;
@@ -294,8 +296,11 @@ class MaterialReader {
 
     if (!draftSeen.empty()) {
       p.draftSheen = true;
-      optional(s, "intensityFactor", path,
-               [&](const json& v, const std::string& at) { p.draftIntensity = number(v, at, Range::NonNegative); });
+      if (s.contains("intensityFactor") && s.contains("sheenFactor"))
+        fail(path, "has both intensityFactor and sheenFactor (the draft's two names for one value); keep one");
+      for (const char* key : {"intensityFactor", "sheenFactor"})
+        optional(s, key, path,
+                 [&](const json& v, const std::string& at) { p.draftIntensity = number(v, at, Range::NonNegative); });
       optional(s, "colorFactor", path,
                [&](const json& v, const std::string& at) { p.draftColor = color(v, at, 3, Range::Unit); });
       noteTextures(s, {"colorIntensityTexture"}, textures);

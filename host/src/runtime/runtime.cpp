@@ -167,9 +167,10 @@ Runtime::Runtime(const std::string& selectorArg) {
     if (selector.empty()) {
       chosen = 0;
     } else if (selector.find_first_not_of("0123456789") == std::string::npos) {
-      chosen = std::stoul(selector);
+      // Digits only, so the one failure mode of stoull is overflow: report it as out of range.
+      chosen = selector.size() > 9 ? devices.size() : std::size_t(std::stoull(selector));
       if (chosen >= devices.size())
-        throw Error(fmt::format("device index {} out of range: {} device(s) found; see 'brdfcl devices'", chosen,
+        throw Error(fmt::format("device index {} out of range: {} device(s) found; see 'brdfcl devices'", selector,
                                 devices.size()));
     } else {
       for (std::size_t i = 0; i < devices.size() && chosen == devices.size(); ++i) {
