@@ -9,6 +9,7 @@
 #include "brdfcl/io.hpp"
 #include "brdfcl/material.hpp"
 #include "brdfcl/runtime.hpp"
+#include "kernels/common/material_layout.h"
 
 namespace brdfcl {
 
@@ -34,6 +35,8 @@ SheenAlbedoTable bakeSheenAlbedo(Runtime& rt, SheenDistribution d, SheenVisibili
 // the kernel source, so a changed kernel never reads a stale table. An unwritable cache is skipped.
 SheenAlbedoTable cachedSheenAlbedo(Runtime& rt, SheenDistribution d, SheenVisibility v);
 
+class SoaBatch;
+
 class Evaluator {
  public:
   Evaluator(Runtime& rt, EvalOptions options);
@@ -50,12 +53,61 @@ class Evaluator {
   const SheenAlbedoTable& sheenAlbedo();
 
  private:
+  friend class SoaBatch;
   struct Batch;
   Batch prepare(const std::vector<MaterialParams>& materials);
 
   Runtime& rt_;
   EvalOptions options_;
   std::unique_ptr<SheenAlbedoTable> table_;
+};
+
+// Samples as structure-of-arrays planes in page-aligned host memory that the device reads and
+// writes in place (CL_MEM_USE_HOST_PTR: zero-copy on CPU devices). Fill the planes, run(), read
+// the result planes; run() again after changing them. This is the throughput path: evaluate()
+// uses it chunk by chunk, and the benchmarks and their C++ peers read the very same arrays.
+class SoaBatch {
+ public:
+  static constexpr std::size_t kLanes = 16;  // BRDFCL_W of the batch kernels
+
+  // Room for `capacity` samples of `materials` (copied and packed now).
+  SoaBatch(Evaluator& evaluator, const std::vector<MaterialParams>& materials, std::size_t capacity);
+  ~SoaBatch();
+  SoaBatch(const SoaBatch&) = delete;
+  SoaBatch& operator=(const SoaBatch&) = delete;
+
+  std::size_t capacity() const { return stride_; }
+  std::size_t stride() const { return stride_; }  // floats between planes: capacity rounded up to kLanes
+  // Samples the next run() evaluates (<= capacity). Lanes past `count` in the last group of 16
+  // are evaluated too; keep them at L = V = 0 (as allocated), which gives f = 0.
+  void setCount(std::size_t count);
+  std::size_t count() const { return count_; }
+
+  float* direction(int k);            // plane k of Lx Ly Lz Vx Vy Vz
+  std::uint32_t* materialIndex();      // one per sample, < materials.size()
+  const float* result(int c) const;    // plane c of r g b, valid after run()
+  const float* directionPlanes() const { return dirs_; }
+  const std::uint32_t* materialIndexPlane() const { return index_; }
+
+  // What the kernel reads besides the samples, for peers that compute the same thing.
+  const std::vector<brdfcl_material>& packedMaterials() const { return packed_; }
+  const std::vector<float>& sheenAlbedoValues() const { return tableValues_; }
+  int sheenAlbedoSize() const { return tableSize_; }
+
+  void run();
+
+ private:
+  Evaluator& ev_;
+  std::size_t stride_ = 0, count_ = 0;
+  float* dirs_ = nullptr;
+  std::uint32_t* index_ = nullptr;
+  float* out_ = nullptr;
+  bool inputsChanged_ = true;
+  std::vector<brdfcl_material> packed_;
+  std::vector<float> tableValues_;
+  int tableSize_ = 2;
+  struct Device;
+  std::unique_ptr<Device> device_;
 };
 
 }  // namespace brdfcl

@@ -1,9 +1,11 @@
-// Batch evaluation on the device: materials are packed once, directions go to the device as
-// SoA planes padded to the kernel's lane width, and batches are split to respect the device's
-// maximum allocation.
+// Batch evaluation on the device. Materials are packed once per batch; samples travel as SoA
+// planes in page-aligned host memory the device uses in place (SoaBatch); batches larger than a
+// chunk (or than the device's largest allocation) run chunk by chunk through one SoaBatch.
 #include "brdfcl/evaluator.hpp"
 
 #include <algorithm>
+#include <cstdlib>
+#include <cstring>
 
 #include <fmt/format.h>
 
@@ -13,8 +15,9 @@
 namespace brdfcl {
 
 namespace {
-constexpr std::size_t kLanes = 16;  // BRDFCL_W of the batch kernels
+constexpr std::size_t kLanes = SoaBatch::kLanes;
 constexpr std::size_t kMaxChunk = std::size_t(1) << 22;
+constexpr std::size_t kPage = 4096;
 
 std::size_t roundUp(std::size_t n, std::size_t m) { return (n + m - 1) / m * m; }
 
@@ -24,17 +27,17 @@ std::size_t chunkSize(const Runtime& rt, std::size_t bytesPerSample) {
   return std::max(kLanes, std::min(kMaxChunk, byAlloc) / kLanes * kLanes);
 }
 
-std::vector<brdfcl_material> packAll(const std::vector<MaterialParams>& materials) {
-  std::vector<brdfcl_material> packed;
-  packed.reserve(materials.size());
-  for (const auto& m : materials) packed.push_back(packMaterial(m));
-  return packed;
+template <class T>
+T* allocPages(std::size_t count) {
+  const std::size_t bytes = roundUp(std::max<std::size_t>(count * sizeof(T), 1), kPage);
+  void* p = std::aligned_alloc(kPage, bytes);
+  if (!p) throw Error(fmt::format("out of host memory allocating {} MiB for a batch", bytes >> 20));
+  std::memset(p, 0, bytes);  // zero directions lie below the horizon: padding lanes give f = 0
+  return static_cast<T*>(p);
 }
 
 // Lays samples [first, first + count) out as the 6 planes the kernels read.
-void fillDirectionPlanes(const Samples& s, std::size_t first, std::size_t count, std::size_t stride,
-                         std::vector<float>& planes) {
-  planes.assign(6 * stride, 0.0f);  // zero padding: L = V = 0 lies below the horizon, f = 0
+void fillDirectionPlanes(const Samples& s, std::size_t first, std::size_t count, std::size_t stride, float* planes) {
   for (std::size_t i = 0; i < count; ++i) {
     const float* L = &s.L[3 * (first + i)];
     const float* V = &s.V[3 * (first + i)];
@@ -48,36 +51,122 @@ void fillDirectionPlanes(const Samples& s, std::size_t first, std::size_t count,
 
 Evaluator::Evaluator(Runtime& rt, EvalOptions options) : rt_(rt), options_(options) {}
 
-// What every launch of a batch shares: the program specialised to its feature set, the packed
-// materials and the sheen albedo table (a 2x2 dummy when no material needs it).
-struct Evaluator::Batch {
-  cl::Program program;
-  cl::Buffer materials, table;
-  int tableSize = 2;
-};
-
-Evaluator::Batch Evaluator::prepare(const std::vector<MaterialParams>& materials) {
-  const auto features = featuresOf(materials);
-  const auto packed = packAll(materials);
-  Batch b;
-  std::vector<float> table(4, 0.0f);
-  if (features.needsSheenAlbedo(options_)) {
-    table = sheenAlbedo().values;
-    b.tableSize = int(table_->width);
-  }
-  b.program = rt_.program("eval.cl", materialDefines(options_, features) + " -DBRDFCL_W=16");
-  const auto& ctx = rt_.context();
-  b.materials = cl::Buffer(ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, packed.size() * sizeof(brdfcl_material),
-                           const_cast<brdfcl_material*>(packed.data()));
-  b.table = cl::Buffer(ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, table.size() * 4, table.data());
-  return b;
-}
-
 const SheenAlbedoTable& Evaluator::sheenAlbedo() {
   if (!table_)
     table_ = std::make_unique<SheenAlbedoTable>(
         cachedSheenAlbedo(rt_, options_.sheenDistribution, options_.sheenVisibility));
   return *table_;
+}
+
+// What every launch of a batch shares: the program specialised to its feature set, the packed
+// materials and the sheen albedo table (a 2x2 dummy when no material needs it).
+struct Evaluator::Batch {
+  cl::Program program;
+  std::vector<brdfcl_material> packed;
+  std::vector<float> table = std::vector<float>(4, 0.0f);
+  int tableSize = 2;
+  cl::Buffer materials, tableBuffer;
+};
+
+Evaluator::Batch Evaluator::prepare(const std::vector<MaterialParams>& materials) {
+  if (materials.empty()) throw Error("no materials to evaluate");
+  const auto features = featuresOf(materials);
+  Batch b;
+  for (const auto& m : materials) b.packed.push_back(packMaterial(m));
+  if (features.needsSheenAlbedo(options_)) {
+    b.table = sheenAlbedo().values;
+    b.tableSize = int(table_->width);
+  }
+  try {
+    b.program = rt_.program("eval.cl", materialDefines(options_, features) + " -DBRDFCL_W=16");
+    const auto& ctx = rt_.context();
+    b.materials = cl::Buffer(ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, b.packed.size() * sizeof(brdfcl_material),
+                             b.packed.data());
+    b.tableBuffer = cl::Buffer(ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, b.table.size() * 4, b.table.data());
+  } catch (const cl::Error&) {
+    rethrowOpenCL("preparing a batch");
+  }
+  return b;
+}
+
+struct SoaBatch::Device {
+  Evaluator::Batch batch;
+  cl::Buffer dirs, index, out;
+  cl::Kernel kernel;
+};
+
+SoaBatch::SoaBatch(Evaluator& evaluator, const std::vector<MaterialParams>& materials, std::size_t capacity)
+    : ev_(evaluator), stride_(roundUp(std::max<std::size_t>(capacity, 1), kLanes)), count_(capacity) {
+  device_ = std::make_unique<Device>();
+  device_->batch = ev_.prepare(materials);
+  packed_ = device_->batch.packed;
+  tableValues_ = device_->batch.table;
+  tableSize_ = device_->batch.tableSize;
+  dirs_ = allocPages<float>(6 * stride_);
+  index_ = allocPages<std::uint32_t>(stride_);
+  out_ = allocPages<float>(3 * stride_);
+  try {
+    const auto& ctx = ev_.rt_.context();
+    device_->dirs = cl::Buffer(ctx, CL_MEM_READ_ONLY | CL_MEM_USE_HOST_PTR, 6 * stride_ * 4, dirs_);
+    device_->index = cl::Buffer(ctx, CL_MEM_READ_ONLY | CL_MEM_USE_HOST_PTR, stride_ * 4, index_);
+    device_->out = cl::Buffer(ctx, CL_MEM_WRITE_ONLY | CL_MEM_USE_HOST_PTR, 3 * stride_ * 4, out_);
+    device_->kernel = cl::Kernel(device_->batch.program, "eval_samples");
+    device_->kernel.setArg(0, device_->dirs);
+    device_->kernel.setArg(1, cl_uint(stride_));
+    device_->kernel.setArg(2, device_->index);
+    device_->kernel.setArg(3, device_->batch.materials);
+    device_->kernel.setArg(4, device_->batch.tableBuffer);
+    device_->kernel.setArg(5, device_->batch.tableSize);
+    device_->kernel.setArg(6, device_->out);
+  } catch (const cl::Error&) {
+    rethrowOpenCL("allocating a sample batch");
+  }
+}
+
+SoaBatch::~SoaBatch() {
+  device_.reset();  // release the buffers before the memory they wrap
+  std::free(dirs_);
+  std::free(index_);
+  std::free(out_);
+}
+
+void SoaBatch::setCount(std::size_t count) {
+  if (count > stride_) throw Error(fmt::format("internal: batch of {} samples exceeds its capacity {}", count, stride_), 3);
+  count_ = count;
+}
+
+float* SoaBatch::direction(int k) {
+  inputsChanged_ = true;
+  return dirs_ + std::size_t(k) * stride_;
+}
+
+std::uint32_t* SoaBatch::materialIndex() {
+  inputsChanged_ = true;
+  return index_;
+}
+
+const float* SoaBatch::result(int c) const { return out_ + std::size_t(c) * stride_; }
+
+void SoaBatch::run() {
+  if (count_ == 0) return;
+  auto& q = ev_.rt_.queue();
+  try {
+    if (inputsChanged_) {
+      // A write map/unmap hands the host's writes to a device that caches USE_HOST_PTR memory
+      // (a GPU); on a CPU device both calls are free.
+      for (cl::Buffer* b : {&device_->dirs, &device_->index}) {
+        void* p = q.enqueueMapBuffer(*b, CL_TRUE, CL_MAP_WRITE, 0, b->getInfo<CL_MEM_SIZE>());
+        q.enqueueUnmapMemObject(*b, p);
+      }
+      inputsChanged_ = false;
+    }
+    q.enqueueNDRangeKernel(device_->kernel, cl::NullRange, cl::NDRange(roundUp(count_, kLanes) / kLanes));
+    void* p = q.enqueueMapBuffer(device_->out, CL_TRUE, CL_MAP_READ, 0, 3 * stride_ * 4);
+    q.enqueueUnmapMemObject(device_->out, p);
+    q.finish();
+  } catch (const cl::Error&) {
+    rethrowOpenCL("evaluating samples");
+  }
 }
 
 std::vector<float> Evaluator::evaluate(const std::vector<MaterialParams>& materials, const Samples& samples) {
@@ -91,34 +180,22 @@ std::vector<float> Evaluator::evaluate(const std::vector<MaterialParams>& materi
   std::vector<float> rgb(3 * n);
   if (n == 0) return rgb;
 
-  try {
-    Batch b = prepare(materials);
-    cl::KernelFunctor<cl::Buffer, cl_uint, cl::Buffer, cl::Buffer, cl::Buffer, int, cl::Buffer> kernel(b.program, "eval_samples");
-    const auto& ctx = rt_.context();
-
-    const std::size_t chunk = std::min(roundUp(n, kLanes), chunkSize(rt_, 6 * 4));
-    cl::Buffer bDirs(ctx, CL_MEM_READ_ONLY, 6 * chunk * 4);
-    cl::Buffer bIndex(ctx, CL_MEM_READ_ONLY, chunk * 4);
-    cl::Buffer bOut(ctx, CL_MEM_WRITE_ONLY, 3 * chunk * 4);
-    std::vector<float> planes, out(3 * chunk);
-    std::vector<std::uint32_t> index(chunk);
-    for (std::size_t first = 0; first < n; first += chunk) {
-      const std::size_t count = std::min(chunk, n - first);
-      const std::size_t stride = roundUp(count, kLanes);
-      fillDirectionPlanes(samples, first, count, stride, planes);
-      std::fill(index.begin(), index.end(), 0u);
-      std::copy_n(samples.material.begin() + first, count, index.begin());
-      auto& q = rt_.queue();
-      q.enqueueWriteBuffer(bDirs, CL_FALSE, 0, 6 * stride * 4, planes.data());
-      q.enqueueWriteBuffer(bIndex, CL_FALSE, 0, stride * 4, index.data());
-      kernel(cl::EnqueueArgs(q, cl::NDRange(stride / kLanes)), bDirs, cl_uint(stride), bIndex, b.materials, b.table,
-             b.tableSize, bOut);
-      q.enqueueReadBuffer(bOut, CL_TRUE, 0, 3 * stride * 4, out.data());
-      for (std::size_t i = 0; i < count; ++i)
-        for (int c = 0; c < 3; ++c) rgb[3 * (first + i) + c] = out[c * stride + i];
+  SoaBatch batch(*this, materials, std::min(roundUp(n, kLanes), chunkSize(rt_, 6 * 4)));
+  const std::size_t chunk = batch.capacity();
+  for (std::size_t first = 0; first < n; first += chunk) {
+    const std::size_t count = std::min(chunk, n - first);
+    if (count < chunk) {  // the last, partial chunk: clear what the previous one left behind
+      std::fill(batch.direction(0), batch.direction(0) + 6 * chunk, 0.0f);
+      std::fill(batch.materialIndex(), batch.materialIndex() + chunk, 0u);
     }
-  } catch (const cl::Error&) {
-    rethrowOpenCL("evaluating samples");
+    fillDirectionPlanes(samples, first, count, chunk, batch.direction(0));
+    std::copy_n(samples.material.begin() + first, count, batch.materialIndex());
+    batch.setCount(count);
+    batch.run();
+    for (int c = 0; c < 3; ++c) {
+      const float* plane = batch.result(c);
+      for (std::size_t i = 0; i < count; ++i) rgb[3 * (first + i) + c] = plane[i];
+    }
   }
   return rgb;
 }
@@ -130,32 +207,32 @@ std::vector<float> Evaluator::evaluateGrid(const std::vector<MaterialParams>& ma
 
   try {
     Batch b = prepare(materials);
-    cl::KernelFunctor<cl::Buffer, cl_uint, cl::Buffer, cl_uint, cl::Buffer, int, cl::Buffer> kernel(b.program, "eval_grid");
+    cl::KernelFunctor<cl::Buffer, cl_uint, cl::Buffer, cl_uint, cl::Buffer, int, cl::Buffer> kernel(b.program,
+                                                                                                  "eval_grid");
     const auto& ctx = rt_.context();
-
     // Directions in chunks; within a chunk, materials in groups whose output fits one launch.
     const std::size_t chunk = std::min(roundUp(n, kLanes), chunkSize(rt_, 6 * 4));
     const std::size_t outLimit = chunkSize(rt_, 3 * 4);
     const std::size_t materialsPerLaunch = std::max<std::size_t>(1, std::min(nm, outLimit / chunk));
     cl::Buffer bDirs(ctx, CL_MEM_READ_ONLY, 6 * chunk * 4);
     cl::Buffer bOut(ctx, CL_MEM_WRITE_ONLY, 3 * chunk * materialsPerLaunch * 4);
-    std::vector<float> planes, out(3 * chunk * materialsPerLaunch);
+    std::vector<float> planes(6 * chunk), out(3 * chunk * materialsPerLaunch);
     auto& q = rt_.queue();
     for (std::size_t first = 0; first < n; first += chunk) {
       const std::size_t count = std::min(chunk, n - first);
       const std::size_t stride = roundUp(count, kLanes);
-      fillDirectionPlanes(samples, first, count, stride, planes);
+      std::fill(planes.begin(), planes.end(), 0.0f);
+      fillDirectionPlanes(samples, first, count, stride, planes.data());
       q.enqueueWriteBuffer(bDirs, CL_FALSE, 0, 6 * stride * 4, planes.data());
       for (std::size_t m0 = 0; m0 < nm; m0 += materialsPerLaunch) {
         const std::size_t mc = std::min(materialsPerLaunch, nm - m0);
         kernel(cl::EnqueueArgs(q, cl::NDRange(stride / kLanes, mc)), bDirs, cl_uint(stride), b.materials,
-               cl_uint(m0), b.table, b.tableSize, bOut);
+               cl_uint(m0), b.tableBuffer, b.tableSize, bOut);
         const std::size_t plane = stride * mc;
         q.enqueueReadBuffer(bOut, CL_TRUE, 0, 3 * plane * 4, out.data());
         for (std::size_t m = 0; m < mc; ++m)
           for (std::size_t i = 0; i < count; ++i)
-            for (int c = 0; c < 3; ++c)
-              rgb[3 * ((m0 + m) * n + first + i) + c] = out[c * plane + m * stride + i];
+            for (int c = 0; c < 3; ++c) rgb[3 * ((m0 + m) * n + first + i) + c] = out[c * plane + m * stride + i];
       }
     }
   } catch (const cl::Error&) {
