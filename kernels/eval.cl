@@ -1,6 +1,6 @@
-/* Batch BRDF evaluation. Directions arrive as SoA planes (Lx Ly Lz Vx Vy Vz, `stride` floats
-   apart) and results leave as planes (r g b). Each work-item handles BRDFCL_W consecutive samples,
-   so the host pads every plane to a multiple of BRDFCL_W. */
+/* Batch BRDF evaluation. Directions arrive as SoA planes (Lx Ly Lz Vx Vy Vz) and results leave
+   as planes (r g b). Each work-item handles BRDFCL_W consecutive samples, so the host pads every
+   plane to a multiple of BRDFCL_W. */
 #include "brdf/material.h"
 
 BRDF_FN void load_directions(__global const float* dirs, uint stride, uint i, vec3w* L, vec3w* V) {
@@ -18,17 +18,24 @@ BRDF_FN void store_rgb(rgbw f, __global float* out, ulong stride, uint i) {
   VSTOREW(f.b, i, out + 2 * stride);
 }
 
-/* One material per sample, gathered by index. */
-__kernel void eval_samples(__global const float* restrict dirs, uint stride,
+/* One material per sample, gathered by index. Every plane is its own buffer, so callers can
+   hand over their arrays in place and a plane stays under the device's largest allocation. */
+__kernel void eval_samples(__global const float* restrict Lx, __global const float* restrict Ly,
+                           __global const float* restrict Lz, __global const float* restrict Vx,
+                           __global const float* restrict Vy, __global const float* restrict Vz,
                            __global const uint* restrict material_index,
                            __global const brdfcl_material* restrict materials,
                            __global const float* restrict sheen_e, int sheen_e_size,
-                           __global float* restrict out) {
+                           __global float* restrict out_r, __global float* restrict out_g,
+                           __global float* restrict out_b) {
   uint i = get_global_id(0);
-  vec3w L, V;
-  load_directions(dirs, stride, i, &L, &V);
+  vec3w L = {VLOADW(i, Lx), VLOADW(i, Ly), VLOADW(i, Lz)};
+  vec3w V = {VLOADW(i, Vx), VLOADW(i, Vy), VLOADW(i, Vz)};
   material_lanes m = material_gather(materials, VLOADW(i, material_index));
-  store_rgb(brdf_material(m, L, V, sheen_e, sheen_e_size), out, stride, i);
+  rgbw f = brdf_material(m, L, V, sheen_e, sheen_e_size);
+  VSTOREW(f.r, i, out_r);
+  VSTOREW(f.g, i, out_g);
+  VSTOREW(f.b, i, out_b);
 }
 
 /* Every material (global id 1, from `first_material`) x every direction pair (global id 0);

@@ -258,7 +258,7 @@ template <std::size_t K>
 VecK<K> albedoIntegrals(double mu, double r, SheenDistribution dist,
                         const std::array<SheenVisibility, K>& vis, double tol) {
   const double alpha = r * r;
-  const double sv = std::sqrt(1.0 - mu * mu);  // V = (sv, 0, mu)
+  const double sv = std::sqrt(std::max(0.0, 1.0 - mu * mu));  // V = (sv, 0, mu)
   // The azimuthal integral is weighted by w = x V (times x in ln x), so its absolute tolerance is
   // 0.1 tol / w: the outer integrand is then accurate to 0.1 tol everywhere, and no work is spent
   // where w is negligible (Charlie V at small x).
@@ -321,13 +321,8 @@ double albedoIntegralImpl(double mu, double r, SheenDistribution dist, SheenVisi
 //    z^5 kind of term at z = 0, harmless).
 // r is mapped by u = ln r on [0.05, 1] because the sheen features scale with alpha_s = r^2.
 // Node counts were chosen from the coefficient decay and checked against the direct integral
-// at random points (max error 1e-6 budget; see the notes at the end of this file).
+// at random points (1e-6 budget; see "Accuracy and cost" at the end of this file).
 enum class MuMap { LogMu, OneMinusMuPow };
-
-struct PieceSpec {
-  MuMap map;
-  int nx, ny;
-};
 
 struct ChebPiece {
   MuMap map = MuMap::LogMu;
@@ -478,8 +473,8 @@ int comboIndex(SheenDistribution d, SheenVisibility v) {
 AlbedoTable gTables[4];
 std::once_flag gOnce[2];
 
-// Node values are integrated to 1e-9 (true errors observed ~1e-11), far below the 1e-6 budget.
-constexpr double kTableTol = 1e-9;
+// Node values are integrated to 1e-8 (true errors observed < 3e-10), far below the 1e-6 budget.
+constexpr double kTableTol = 1e-8;
 
 const AlbedoTable& table(SheenDistribution d, SheenVisibility v, double* builtSeconds = nullptr) {
   const int k = comboIndex(d, v);
@@ -504,6 +499,8 @@ double sheenAlbedoIntegral(double mu, double sheenRoughness, SheenDistribution d
 }
 
 double sheenAlbedo(double mu, double sheenRoughness, SheenDistribution d, SheenVisibility v) {
+  // A normalised N.V can exceed 1 by an ulp; (1 - mu)^c would then be NaN.
+  if (mu > 1.0 && mu < 1.0 + 1e-12) mu = 1.0;
   if (!(mu >= kAlbedoMuMin && mu <= 1.0 && sheenRoughness >= kAlbedoRMin && sheenRoughness <= 1.0)) {
     // Outside the table: integrate. Quadratures over L (directionalAlbedo) ask for the same
     // E(N.L) at every azimuth of one N.L (up to the rounding of normalize), so the last answer
@@ -716,5 +713,18 @@ Rgb directionalAlbedo(const brdfcl::MaterialParams& m, const brdfcl::EvalOptions
   }
   return sum;
 }
+
+// ============================================================================================
+// Accuracy and cost of E (measured on a shared 2-core x86-64 VM, g++ 12 -O2)
+// ============================================================================================
+// - Integral: tolerance 1e-8 / 1e-10 / 1e-13 runs agree to < 3e-10 / < 1e-11 over mu in
+//   {0.01 .. 1} x r in {0.05 .. 1}, all four D x V; an independent half-vector composite
+//   Gauss-Legendre quadrature (test_reference.cpp) agrees to < 5e-8 and converges towards it;
+//   closed forms at mu = 1 (Charlie D x Ashikhmin V with 1/alpha even, Ashikhmin x Ashikhmin)
+//   are met to 1e-10. ~1-10 ms per value.
+// - Table (28 + 24 nodes in mu, 36 in r per distribution): max |table - integral| < 1e-7 over
+//   2000 random points (log- and linearly distributed, dense near mu = 1) and the test grid.
+//   Fewer nodes (22 + 20, 30) reach ~9e-7, hence these counts. Lookup ~0.3-0.6 us.
+// - Build: ~1.3-1.7 s of CPU per distribution (both visibilities), split over all cores.
 
 }  // namespace ref

@@ -41,6 +41,15 @@ Vec3 normalized(Vec3 v) {
   return {v.x / l, v.y / l, v.z / l};
 }
 
+// Random material parameters come as floats from a function that is not inlined: with GCC 12.2
+// at -O2, `arr = {uf(rng), ...}` followed by double(arr[k]) in the same function was seen
+// to yield the unrounded double (the narrowing vanished), so expected values computed here
+// disagreed with the float the reference reads.
+[[gnu::noinline]] float uf(std::mt19937_64& rng, double lo = 0.0, double hi = 1.0) {
+  std::uniform_real_distribution<double> u(lo, hi);
+  return static_cast<float>(u(rng));
+}
+
 // Random direction in the upper hemisphere with cos theta in [lo, 1].
 Vec3 randomDir(std::mt19937_64& rng, double lo = 0.01) {
   std::uniform_real_distribution<double> u(0.0, 1.0);
@@ -173,8 +182,11 @@ TEST(Reference, GaussKronrodIsExactUpToDegree31) {
 
 TEST(Reference, GgxClosedForms) {
   for (double alpha : {0.0025, 0.04, 0.3, 1.0}) {
-    EXPECT_NEAR(ref::D_GGX(1.0, alpha), 1.0 / (kPi * alpha * alpha), 1e-12 / (alpha * alpha));
-    EXPECT_NEAR(ref::D_GGX(0.0, alpha), alpha * alpha / kPi, 1e-15);
+    // (N.H)^2 (alpha^2 - 1) + 1 cancels to alpha^2 at N.H = 1: ~1e-16 / alpha^2 relative error.
+    const double atNormal = 1.0 / (kPi * alpha * alpha);
+    EXPECT_NEAR(ref::D_GGX(1.0, alpha), atNormal, 1e-10 * atNormal);
+    EXPECT_NEAR(ref::D_GGX(1e-9, alpha), alpha * alpha / kPi, 1e-15);
+    EXPECT_EQ(ref::D_GGX(0.0, alpha), 0.0);  // chi+(0) = 0
     EXPECT_EQ(ref::D_GGX(-0.3, alpha), 0.0);
     EXPECT_NEAR(ref::V_SmithGGXCorrelated(1.0, 1.0, alpha), 0.25, 1e-15);
   }
@@ -246,7 +258,8 @@ TEST(Reference, DistributionsAreNormalized) {
 }
 
 TEST(Reference, AnisotropicDistributionIsNormalized) {
-  for (auto [at, ab] : {std::pair{0.3, 0.05}, std::pair{1.0, 0.2}, std::pair{0.5, 0.5}}) {
+  for (const auto& ta : {std::pair{0.3, 0.05}, std::pair{1.0, 0.2}, std::pair{0.5, 0.5}}) {
+    const double at = ta.first, ab = ta.second;  // not structured bindings: C++17 lambdas cannot capture those
     auto overPhi = [&](double t) {
       const double s = std::sqrt(1.0 - t * t);
       auto f = [&](double phi) {
@@ -302,14 +315,16 @@ TEST(Reference, AnisotropyStretchesAlongTheRotatedTangent) {
     return Vec3{d * H.x - V.x, d * H.y - V.y, d * H.z - V.z};
   };
   const double tilt = 0.3;
-  for (double rot : {0.0, kPi / 2.0, 0.7}) {
-    m.anisotropyRotation = static_cast<float>(rot);
+  for (double rotD : {0.0, kPi / 2.0, 0.7}) {
+    m.anisotropyRotation = static_cast<float>(rotD);
+    const double rot = m.anisotropyRotation;  // the float the reference reads
     const Vec3 alongT = dir(std::cos(tilt), rot), alongB = dir(std::cos(tilt), rot + kPi / 2.0);
     const double fT = ref::brdf(m, o, reflectAbout(alongT), V)[0];
     const double fB = ref::brdf(m, o, reflectAbout(alongB), V)[0];
     EXPECT_GT(fT, 2.0 * fB) << "rotation " << rot;
     // Exact value along T': alpha_t governs the tilt, alpha_b = alpha.
-    const double a = 0.09, at = a * (1.0 - 0.64) + 0.64;
+    const double a = double(m.roughness) * m.roughness, s2 = double(m.anisotropyStrength) * m.anisotropyStrength;
+    const double at = a * (1.0 - s2) + s2;
     const double expectedD = 1.0 / (kPi * at * a *
                                     std::pow(std::sin(tilt) * std::sin(tilt) / (at * at) + std::cos(tilt) * std::cos(tilt), 2.0));
     const Vec3 L = reflectAbout(alongT);
@@ -388,21 +403,20 @@ TEST(Reference, ClearcoatAndViewScalingAreNotReciprocal) {
 
 TEST(Reference, LobesSumToAll) {
   std::mt19937_64 rng(4);
-  std::uniform_real_distribution<double> u(0.0, 1.0);
   for (int i = 0; i < 400; ++i) {
     MaterialParams m;
-    m.baseColor = {float(u(rng)), float(u(rng)), float(u(rng))};
-    m.metallic = float(u(rng));
-    m.roughness = float(0.05 + 0.95 * u(rng));
+    m.baseColor = {uf(rng), uf(rng), uf(rng)};
+    m.metallic = uf(rng);
+    m.roughness = uf(rng, 0.05, 1.0);
     m.draftSheen = i % 4 == 3;
-    if (i % 3 != 0) m.sheenColor = {float(u(rng)), float(u(rng)), float(u(rng))};
-    m.sheenRoughness = float(0.05 + 0.95 * u(rng));
-    m.draftColor = {float(u(rng)), float(u(rng)), float(u(rng))};
-    m.draftIntensity = float(u(rng));
-    if (i % 2) m.clearcoat = float(u(rng));
-    m.clearcoatRoughness = float(0.05 + 0.95 * u(rng));
-    if (i % 5 < 2) m.anisotropyStrength = float(u(rng));
-    m.anisotropyRotation = float(6.0 * u(rng));
+    if (i % 3 != 0) m.sheenColor = {uf(rng), uf(rng), uf(rng)};
+    m.sheenRoughness = uf(rng, 0.05, 1.0);
+    m.draftColor = {uf(rng), uf(rng), uf(rng)};
+    m.draftIntensity = uf(rng);
+    if (i % 2) m.clearcoat = uf(rng);
+    m.clearcoatRoughness = uf(rng, 0.05, 1.0);
+    if (i % 5 < 2) m.anisotropyStrength = uf(rng);
+    m.anisotropyRotation = uf(rng, 0.0, 6.0);
     EvalOptions o;
     o.sheenDistribution = kDists[i % 2];
     o.sheenVisibility = kVises[(i / 2) % 2];
@@ -422,9 +436,12 @@ TEST(Reference, LobesSumToAll) {
     expectRgbNear(sum, all, 1e-13, 1e-300, "sum of lobes");
     // Disabled layers contribute nothing.
     for (int c = 0; c < 3; ++c) {
-      if (m.clearcoat == 0.0f) EXPECT_EQ(lobes[3][c], 0.0);
-      if (!m.draftSheen && m.sheenColor[0] == 0.0f && m.sheenColor[1] == 0.0f && m.sheenColor[2] == 0.0f)
+      if (m.clearcoat == 0.0f) {
+        EXPECT_EQ(lobes[3][c], 0.0);
+      }
+      if (!m.draftSheen && m.sheenColor[0] == 0.0f && m.sheenColor[1] == 0.0f && m.sheenColor[2] == 0.0f) {
         EXPECT_EQ(lobes[2][c], 0.0);
+      }
     }
   }
   MaterialParams metal;  // metallic = 1: no diffuse at all
@@ -435,20 +452,19 @@ TEST(Reference, LobesSumToAll) {
 
 TEST(Reference, LayeringFollowsTheSpecFormulas) {
   std::mt19937_64 rng(5);
-  std::uniform_real_distribution<double> u(0.0, 1.0);
   for (int i = 0; i < 100; ++i) {
     MaterialParams base;
-    base.baseColor = {float(u(rng)), float(u(rng)), float(u(rng))};
-    base.metallic = float(u(rng));
-    base.roughness = float(0.05 + 0.95 * u(rng));
+    base.baseColor = {uf(rng), uf(rng), uf(rng)};
+    base.metallic = uf(rng);
+    base.roughness = uf(rng, 0.05, 1.0);
     const Vec3 L = randomDir(rng), V = randomDir(rng);
     const Vec3 H = normalized({L.x + V.x, L.y + V.y, L.z + V.z});
     const Rgb fBase = ref::brdf(base, {}, L, V);
 
     // Ratified sheen (000): sheenColor * D * V + scaling * material.
     MaterialParams sh = base;
-    sh.sheenColor = {float(u(rng)), float(u(rng)), float(u(rng))};
-    sh.sheenRoughness = float(0.05 + 0.95 * u(rng));
+    sh.sheenColor = {uf(rng), uf(rng), uf(rng)};
+    sh.sheenRoughness = uf(rng, 0.05, 1.0);
     const double rs = sh.sheenRoughness, as = rs * rs;
     const double mc = std::max({double(sh.sheenColor[0]), double(sh.sheenColor[1]), double(sh.sheenColor[2])});
     for (SheenDistribution d : kDists)
@@ -472,8 +488,8 @@ TEST(Reference, LayeringFollowsTheSpecFormulas) {
     // with roughness = material roughness; options and sheenColor do not apply.
     MaterialParams dr = sh;
     dr.draftSheen = true;
-    dr.draftColor = {float(u(rng)), float(u(rng)), float(u(rng))};
-    dr.draftIntensity = float(u(rng));
+    dr.draftColor = {uf(rng), uf(rng), uf(rng)};
+    dr.draftIntensity = uf(rng);
     double reflectance = 0.0;
     for (int c = 0; c < 3; ++c)
       reflectance = std::max(reflectance, 0.04 * (1.0 - dr.metallic) + double(dr.baseColor[c]) * dr.metallic);
@@ -491,8 +507,8 @@ TEST(Reference, LayeringFollowsTheSpecFormulas) {
 
     // Clearcoat (004) on top: (1 - c Fc) * below + c Fc * D_GGX * V_Smith, Fc on N.V.
     MaterialParams cc = sh;
-    cc.clearcoat = float(u(rng));
-    cc.clearcoatRoughness = float(0.05 + 0.95 * u(rng));
+    cc.clearcoat = uf(rng);
+    cc.clearcoatRoughness = uf(rng, 0.05, 1.0);
     const double fc = 0.04 + 0.96 * std::pow(1.0 - V.z, 5.0);
     const double ac = double(cc.clearcoatRoughness) * cc.clearcoatRoughness;
     const double coat = ref::D_GGX(H.z, ac) * ref::V_SmithGGXCorrelated(L.z, V.z, ac);
@@ -507,12 +523,11 @@ TEST(Reference, LayeringFollowsTheSpecFormulas) {
 TEST(Reference, BaseMatchesAppendixB) {
   // Dielectric and metal mixed by metallic, F on V.H; written out here from Appendix B.
   std::mt19937_64 rng(6);
-  std::uniform_real_distribution<double> u(0.0, 1.0);
   for (int i = 0; i < 100; ++i) {
     MaterialParams m;
-    m.baseColor = {float(u(rng)), float(u(rng)), float(u(rng))};
-    m.metallic = float(u(rng));
-    m.roughness = float(0.05 + 0.95 * u(rng));
+    m.baseColor = {uf(rng), uf(rng), uf(rng)};
+    m.metallic = uf(rng);
+    m.roughness = uf(rng, 0.05, 1.0);
     const Vec3 L = randomDir(rng), V = randomDir(rng);
     const Vec3 H = normalized({L.x + V.x, L.y + V.y, L.z + V.z});
     const double a = double(m.roughness) * m.roughness;
@@ -616,7 +631,8 @@ TEST(Reference, SheenLobeAlbedoEqualsE) {
 
 TEST(Reference, WhiteFurnaceOfMetallicLayeredMaterialsAtMostOne) {
   // White metal (the MaterialParams defaults) under sheen with albedo scaling and clearcoat:
-  // every layer is energy-bounded, so the directional albedo is <= 1 (and well above 0).
+  // every layer is energy-bounded, so the directional albedo is <= 1 (and well above 0; the
+  // single-scattering GGX metal at roughness 1 keeps only ~0.31 at normal view).
   struct Case {
     MaterialParams m;
     EvalOptions o;
@@ -659,7 +675,7 @@ TEST(Reference, WhiteFurnaceOfMetallicLayeredMaterialsAtMostOne) {
       const Rgb a = ref::directionalAlbedo(c.m, c.o, dir(mu, 1.0), 1e-6);
       for (int ch = 0; ch < 3; ++ch) {
         EXPECT_LE(a[ch], 1.0 + 1e-3) << "mu " << mu;
-        EXPECT_GT(a[ch], 0.4) << "mu " << mu;
+        EXPECT_GT(a[ch], 0.3) << "mu " << mu;
       }
     }
   // With View scaling the sheen layer conserves exactly what E says:

@@ -76,8 +76,7 @@ class SoaBatch {
   SoaBatch(const SoaBatch&) = delete;
   SoaBatch& operator=(const SoaBatch&) = delete;
 
-  std::size_t capacity() const { return stride_; }
-  std::size_t stride() const { return stride_; }  // floats between planes: capacity rounded up to kLanes
+  std::size_t capacity() const { return capacity_; }  // requested capacity rounded up to kLanes
   // Samples the next run() evaluates (<= capacity). Lanes past `count` in the last group of 16
   // are evaluated too; keep them at L = V = 0 (as allocated), which gives f = 0.
   void setCount(std::size_t count);
@@ -86,8 +85,9 @@ class SoaBatch {
   float* direction(int k);            // plane k of Lx Ly Lz Vx Vy Vz
   std::uint32_t* materialIndex();      // one per sample, < materials.size()
   const float* result(int c) const;    // plane c of r g b, valid after run()
-  const float* directionPlanes() const { return dirs_; }
+  const float* directionPlane(int k) const { return planes_[k]; }
   const std::uint32_t* materialIndexPlane() const { return index_; }
+  float* resultPlane(int c) { return planes_[6 + c]; }  // for peers writing where the kernel does
 
   // What the kernel reads besides the samples, for peers that compute the same thing.
   const std::vector<brdfcl_material>& packedMaterials() const { return packed_; }
@@ -98,10 +98,9 @@ class SoaBatch {
 
  private:
   Evaluator& ev_;
-  std::size_t stride_ = 0, count_ = 0;
-  float* dirs_ = nullptr;
+  std::size_t capacity_ = 0, count_ = 0;
+  float* planes_[9] = {};  // Lx Ly Lz Vx Vy Vz r g b, each page-aligned
   std::uint32_t* index_ = nullptr;
-  float* out_ = nullptr;
   bool inputsChanged_ = true;
   std::vector<brdfcl_material> packed_;
   std::vector<float> tableValues_;

@@ -91,33 +91,34 @@ Evaluator::Batch Evaluator::prepare(const std::vector<MaterialParams>& materials
 
 struct SoaBatch::Device {
   Evaluator::Batch batch;
-  cl::Buffer dirs, index, out;
+  cl::Buffer planes[9], index;
   cl::Kernel kernel;
 };
 
 SoaBatch::SoaBatch(Evaluator& evaluator, const std::vector<MaterialParams>& materials, std::size_t capacity)
-    : ev_(evaluator), stride_(roundUp(std::max<std::size_t>(capacity, 1), kLanes)), count_(capacity) {
+    : ev_(evaluator), capacity_(roundUp(std::max<std::size_t>(capacity, 1), kLanes)), count_(capacity) {
   device_ = std::make_unique<Device>();
   device_->batch = ev_.prepare(materials);
   packed_ = device_->batch.packed;
   tableValues_ = device_->batch.table;
   tableSize_ = device_->batch.tableSize;
-  dirs_ = allocPages<float>(6 * stride_);
-  index_ = allocPages<std::uint32_t>(stride_);
-  out_ = allocPages<float>(3 * stride_);
+  for (auto& p : planes_) p = allocPages<float>(capacity_);
+  index_ = allocPages<std::uint32_t>(capacity_);
   try {
     const auto& ctx = ev_.rt_.context();
-    device_->dirs = cl::Buffer(ctx, CL_MEM_READ_ONLY | CL_MEM_USE_HOST_PTR, 6 * stride_ * 4, dirs_);
-    device_->index = cl::Buffer(ctx, CL_MEM_READ_ONLY | CL_MEM_USE_HOST_PTR, stride_ * 4, index_);
-    device_->out = cl::Buffer(ctx, CL_MEM_WRITE_ONLY | CL_MEM_USE_HOST_PTR, 3 * stride_ * 4, out_);
-    device_->kernel = cl::Kernel(device_->batch.program, "eval_samples");
-    device_->kernel.setArg(0, device_->dirs);
-    device_->kernel.setArg(1, cl_uint(stride_));
-    device_->kernel.setArg(2, device_->index);
-    device_->kernel.setArg(3, device_->batch.materials);
-    device_->kernel.setArg(4, device_->batch.tableBuffer);
-    device_->kernel.setArg(5, device_->batch.tableSize);
-    device_->kernel.setArg(6, device_->out);
+    auto& d = *device_;
+    for (int k = 0; k < 9; ++k)
+      d.planes[k] = cl::Buffer(ctx, (k < 6 ? CL_MEM_READ_ONLY : CL_MEM_WRITE_ONLY) | CL_MEM_USE_HOST_PTR,
+                               capacity_ * 4, planes_[k]);
+    d.index = cl::Buffer(ctx, CL_MEM_READ_ONLY | CL_MEM_USE_HOST_PTR, capacity_ * 4, index_);
+    d.kernel = cl::Kernel(d.batch.program, "eval_samples");
+    int arg = 0;
+    for (int k = 0; k < 6; ++k) d.kernel.setArg(arg++, d.planes[k]);
+    d.kernel.setArg(arg++, d.index);
+    d.kernel.setArg(arg++, d.batch.materials);
+    d.kernel.setArg(arg++, d.batch.tableBuffer);
+    d.kernel.setArg(arg++, d.batch.tableSize);
+    for (int k = 6; k < 9; ++k) d.kernel.setArg(arg++, d.planes[k]);
   } catch (const cl::Error&) {
     rethrowOpenCL("allocating a sample batch");
   }
@@ -125,19 +126,19 @@ SoaBatch::SoaBatch(Evaluator& evaluator, const std::vector<MaterialParams>& mate
 
 SoaBatch::~SoaBatch() {
   device_.reset();  // release the buffers before the memory they wrap
-  std::free(dirs_);
+  for (auto* p : planes_) std::free(p);
   std::free(index_);
-  std::free(out_);
 }
 
 void SoaBatch::setCount(std::size_t count) {
-  if (count > stride_) throw Error(fmt::format("internal: batch of {} samples exceeds its capacity {}", count, stride_), 3);
+  if (count > capacity_)
+    throw Error(fmt::format("internal: batch of {} samples exceeds its capacity {}", count, capacity_), 3);
   count_ = count;
 }
 
 float* SoaBatch::direction(int k) {
   inputsChanged_ = true;
-  return dirs_ + std::size_t(k) * stride_;
+  return planes_[k];
 }
 
 std::uint32_t* SoaBatch::materialIndex() {
@@ -145,24 +146,28 @@ std::uint32_t* SoaBatch::materialIndex() {
   return index_;
 }
 
-const float* SoaBatch::result(int c) const { return out_ + std::size_t(c) * stride_; }
+const float* SoaBatch::result(int c) const { return planes_[6 + c]; }
 
 void SoaBatch::run() {
   if (count_ == 0) return;
   auto& q = ev_.rt_.queue();
+  auto& d = *device_;
   try {
     if (inputsChanged_) {
       // A write map/unmap hands the host's writes to a device that caches USE_HOST_PTR memory
       // (a GPU); on a CPU device both calls are free.
-      for (cl::Buffer* b : {&device_->dirs, &device_->index}) {
-        void* p = q.enqueueMapBuffer(*b, CL_TRUE, CL_MAP_WRITE, 0, b->getInfo<CL_MEM_SIZE>());
-        q.enqueueUnmapMemObject(*b, p);
+      for (int k = 0; k < 7; ++k) {
+        cl::Buffer& b = k < 6 ? d.planes[k] : d.index;
+        void* p = q.enqueueMapBuffer(b, CL_TRUE, CL_MAP_WRITE, 0, capacity_ * 4);
+        q.enqueueUnmapMemObject(b, p);
       }
       inputsChanged_ = false;
     }
-    q.enqueueNDRangeKernel(device_->kernel, cl::NullRange, cl::NDRange(roundUp(count_, kLanes) / kLanes));
-    void* p = q.enqueueMapBuffer(device_->out, CL_TRUE, CL_MAP_READ, 0, 3 * stride_ * 4);
-    q.enqueueUnmapMemObject(device_->out, p);
+    q.enqueueNDRangeKernel(d.kernel, cl::NullRange, cl::NDRange(roundUp(count_, kLanes) / kLanes));
+    for (int k = 6; k < 9; ++k) {
+      void* p = q.enqueueMapBuffer(d.planes[k], CL_TRUE, CL_MAP_READ, 0, capacity_ * 4);
+      q.enqueueUnmapMemObject(d.planes[k], p);
+    }
     q.finish();
   } catch (const cl::Error&) {
     rethrowOpenCL("evaluating samples");
@@ -180,16 +185,24 @@ std::vector<float> Evaluator::evaluate(const std::vector<MaterialParams>& materi
   std::vector<float> rgb(3 * n);
   if (n == 0) return rgb;
 
-  SoaBatch batch(*this, materials, std::min(roundUp(n, kLanes), chunkSize(rt_, 6 * 4)));
+  SoaBatch batch(*this, materials, std::min(roundUp(n, kLanes), chunkSize(rt_, 4)));
   const std::size_t chunk = batch.capacity();
   for (std::size_t first = 0; first < n; first += chunk) {
     const std::size_t count = std::min(chunk, n - first);
+    float* planes[6];
+    for (int k = 0; k < 6; ++k) planes[k] = batch.direction(k);
+    std::uint32_t* index = batch.materialIndex();
     if (count < chunk) {  // the last, partial chunk: clear what the previous one left behind
-      std::fill(batch.direction(0), batch.direction(0) + 6 * chunk, 0.0f);
-      std::fill(batch.materialIndex(), batch.materialIndex() + chunk, 0u);
+      for (auto* p : planes) std::fill(p + count, p + chunk, 0.0f);
+      std::fill(index + count, index + chunk, 0u);
     }
-    fillDirectionPlanes(samples, first, count, chunk, batch.direction(0));
-    std::copy_n(samples.material.begin() + first, count, batch.materialIndex());
+    for (std::size_t i = 0; i < count; ++i) {
+      for (int c = 0; c < 3; ++c) {
+        planes[c][i] = samples.L[3 * (first + i) + c];
+        planes[3 + c][i] = samples.V[3 * (first + i) + c];
+      }
+      index[i] = samples.material[first + i];
+    }
     batch.setCount(count);
     batch.run();
     for (int c = 0; c < 3; ++c) {
