@@ -39,46 +39,45 @@
    N.L or N.V -> 0+ (documented clamp; f = 0 at N.L <= 0 or N.V <= 0 anyway). */
 #define BRDFCL_MIN_COS 1.0e-4f
 
-#define BRDFCL_MATERIAL_LANES(X)                                                  \
-  X(base_r, m->base_color[0]) X(base_g, m->base_color[1]) X(base_b, m->base_color[2]) \
-  X(metallic, m->metallic) X(alpha, m->alpha) X(alpha_t, m->alpha_t)            \
-  X(aniso_cos, m->aniso_cos) X(aniso_sin, m->aniso_sin)                         \
-  X(sheen_r, m->sheen_color[0]) X(sheen_g, m->sheen_color[1]) X(sheen_b, m->sheen_color[2]) \
-  X(sheen_max, m->sheen_max) X(sheen_alpha, m->sheen_alpha)                     \
-  X(sheen_roughness, m->sheen_roughness) X(sheen_weight, m->sheen_weight)       \
-  X(draft, ((m->flags & BRDFCL_MAT_DRAFT_SHEEN) ? 1.0f : 0.0f))                  \
-  X(clearcoat, m->clearcoat) X(clearcoat_alpha, m->clearcoat_alpha)
+/* The float fields a lane reads, as (lane name, field of brdfcl_material). */
+#define BRDFCL_MATERIAL_LANES(X)                                                      \
+  X(base_r, base_color[0]) X(base_g, base_color[1]) X(base_b, base_color[2])          \
+  X(metallic, metallic) X(alpha, alpha) X(alpha_t, alpha_t)                           \
+  X(aniso_cos, aniso_cos) X(aniso_sin, aniso_sin)                                     \
+  X(sheen_r, sheen_color[0]) X(sheen_g, sheen_color[1]) X(sheen_b, sheen_color[2])    \
+  X(sheen_max, sheen_max) X(sheen_alpha, sheen_alpha)                                 \
+  X(sheen_roughness, sheen_roughness) X(sheen_weight, sheen_weight)                   \
+  X(clearcoat, clearcoat) X(clearcoat_alpha, clearcoat_alpha)
 
-#define BRDFCL_DECLARE_LANE(name, src) realw name;
-typedef struct { BRDFCL_MATERIAL_LANES(BRDFCL_DECLARE_LANE) } material_lanes;
+#define BRDFCL_DECLARE_LANE(name, field) realw name;
+typedef struct {
+  BRDFCL_MATERIAL_LANES(BRDFCL_DECLARE_LANE)
+  realw draft; /* 1 for the experimental draft's sheen, else 0 */
+} material_lanes;
 
 /* All lanes share one material (grid evaluation): splat. */
 BRDF_FN material_lanes material_splat(__global const brdfcl_material* m) {
   material_lanes out;
-#define BRDFCL_SPLAT_LANE(name, src) out.name = (realw)(src);
+#define BRDFCL_SPLAT_LANE(name, field) out.name = (realw)(m->field);
   BRDFCL_MATERIAL_LANES(BRDFCL_SPLAT_LANE)
+  out.draft = (realw)((m->flags & BRDFCL_MAT_DRAFT_SHEEN) ? 1.0f : 0.0f);
   return out;
 }
 
-/* Each lane has its own material index: gather field by field. */
+/* Each lane has its own material index: one vector gather per field, records being
+   sizeof(brdfcl_material) / 4 floats apart. */
 #if BRDFCL_W == 1
 BRDF_FN material_lanes material_gather(__global const brdfcl_material* materials, uintw index) {
   return material_splat(materials + index);
 }
 #else
 BRDF_FN material_lanes material_gather(__global const brdfcl_material* materials, uintw index) {
-  uint idx[BRDFCL_W];
-  VSTOREW(index, 0, idx);
-#define BRDFCL_LANE_ARRAY(name, src) float name##_a[BRDFCL_W];
-  BRDFCL_MATERIAL_LANES(BRDFCL_LANE_ARRAY)
-  for (int i = 0; i < BRDFCL_W; ++i) {
-    __global const brdfcl_material* m = materials + idx[i];
-#define BRDFCL_LANE_STORE(name, src) name##_a[i] = (src);
-    BRDFCL_MATERIAL_LANES(BRDFCL_LANE_STORE)
-  }
+  intw at = AS_INTW(index) * (int)(sizeof(brdfcl_material) / 4);
   material_lanes out;
-#define BRDFCL_LANE_LOAD(name, src) out.name = VLOADW(0, name##_a);
-  BRDFCL_MATERIAL_LANES(BRDFCL_LANE_LOAD)
+#define BRDFCL_GATHER_LANE(name, field) out.name = GATHERW((__global const float*)&materials->field, at);
+  BRDFCL_MATERIAL_LANES(BRDFCL_GATHER_LANE)
+  intw flags = AS_INTW(GATHERW((__global const float*)&materials->flags, at));
+  out.draft = select((realw)(0.0f), (realw)(1.0f), (flags & (int)BRDFCL_MAT_DRAFT_SHEEN) != 0);
   return out;
 }
 #endif
@@ -155,9 +154,10 @@ BRDF_FN rgbw brdf_material(const material_lanes m, vec3w L, vec3w V, __global co
   }
 #if BRDFCL_HAS_SHEEN && BRDFCL_SCALING != BRDFCL_SCALING_NONE
   /* Conty & Kulla albedo scaling; 000 "Albedo-scaling technique". Draft lanes have sheen_max 0. */
-  realw s_view = 1.0f - m.sheen_max * E_SheenAlbedo(sheen_e, sheen_e_size, NdotV, m.sheen_roughness);
+  sheen_albedo_row row = E_SheenAlbedoRow(sheen_e_size, m.sheen_roughness);
+  realw s_view = 1.0f - m.sheen_max * E_SheenAlbedo(sheen_e, sheen_e_size, row, NdotV);
 #if BRDFCL_SCALING == BRDFCL_SCALING_MIN
-  realw s_light = 1.0f - m.sheen_max * E_SheenAlbedo(sheen_e, sheen_e_size, NdotL, m.sheen_roughness);
+  realw s_light = 1.0f - m.sheen_max * E_SheenAlbedo(sheen_e, sheen_e_size, row, NdotL);
   base = rgbw_scale(base, min(s_view, s_light));
 #else
   base = rgbw_scale(base, s_view);

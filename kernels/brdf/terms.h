@@ -5,6 +5,7 @@
 #define BRDFCL_TERMS_H
 
 #include "common/lanes.h"
+#include "common/fastmath.h"
 
 /* Burley 2012 anisotropic GGX; 002_aa19eb57033fc98d.txt "Anisotropy". ht, hb, hn: h on T', B', N;
    h2 = |h|^2. With at == ab == alpha it is glTF Appendix B's isotropic D_GGX. */
@@ -47,8 +48,8 @@ BRDF_FN realw F_Schlick(realw f0, realw w) { return f0 + (1.0f - f0) * w; }
    exact at the large exponents of small alpha. */
 BRDF_FN realw D_Charlie(realw hxy2, realw hn2, realw alpha) {
   realw inv_r = 1.0f / alpha;
-  realw log_sin2 = -log1p(hn2 / hxy2);
-  return (2.0f + inv_r) * exp(0.5f * inv_r * log_sin2) * (0.5f / M_PI_F);
+  realw log_sin2 = -brdf_log1p(hn2 / hxy2);
+  return (2.0f + inv_r) * brdf_exp(0.5f * inv_r * log_sin2) * (0.5f / M_PI_F);
 }
 
 /* Ashikhmin & Premoze 2007 velvet, inverted Gaussian; 003 "AshikhminD", called with
@@ -59,32 +60,44 @@ BRDF_FN realw D_Ashikhmin(realw hxy2, realw hn2, realw alpha) {
   realw sin2 = max(hxy2 / h2, 1.0e-6f);
   realw cos2 = hn2 / h2;
   realw m2 = alpha * alpha;
-  realw lobe = 4.0f * exp(-cos2 / (sin2 * m2)) / (sin2 * sin2);
+  realw lobe = 4.0f * brdf_exp(-cos2 / (sin2 * m2)) / (sin2 * sin2);
   return (1.0f + lobe) / (M_PI_F * (1.0f + 4.0f * m2));
 }
 
-/* Conty & Kulla 2017 fit of the Charlie Lambda; 000 "Sheen visibility", with its constants. */
-BRDF_FN realw L_CharlieFit(realw x, realw alpha) {
+/* Conty & Kulla 2017 fit of the Charlie Lambda; 000 "Sheen visibility", with its constants.
+   The five coefficients depend on alpha only, so one set serves both directions. */
+typedef struct { realw a, b, c, d, e, l_half; } charlie_fit;
+
+BRDF_FN charlie_fit CharlieFit(realw alpha) {
   realw t = (1.0f - alpha) * (1.0f - alpha);
-  realw a = mix((realw)(21.5473f), (realw)(25.3245f), t);
-  realw b = mix((realw)(3.82987f), (realw)(3.32435f), t);
-  realw c = mix((realw)(0.19823f), (realw)(0.16801f), t);
-  realw d = mix((realw)(-1.97760f), (realw)(-1.27393f), t);
-  realw e = mix((realw)(-4.32054f), (realw)(-4.85967f), t);
-  /* x^c with x = 0 is 0; exp2(c * log2(0)) = exp2(-inf) = 0 keeps that. */
-  return a / (1.0f + b * exp2(c * log2(x))) + d * x + e;
+  charlie_fit f;
+  f.a = mix((realw)(21.5473f), (realw)(25.3245f), t);
+  f.b = mix((realw)(3.82987f), (realw)(3.32435f), t);
+  f.c = mix((realw)(0.19823f), (realw)(0.16801f), t);
+  f.d = mix((realw)(-1.97760f), (realw)(-1.27393f), t);
+  f.e = mix((realw)(-4.32054f), (realw)(-4.85967f), t);
+  /* l(0.5): 0.5^c = 2^-c exactly, one exp2 instead of a pow. */
+  f.l_half = f.a / (1.0f + f.b * brdf_exp2(-f.c)) + 0.5f * f.d + f.e;
+  return f;
 }
 
-BRDF_FN realw Lambda_Charlie(realw cos_theta, realw alpha) {
-  realw lo = L_CharlieFit(cos_theta, alpha);
-  realw hi = 2.0f * L_CharlieFit((realw)(0.5f), alpha) - L_CharlieFit(1.0f - cos_theta, alpha);
-  return exp(select(hi, lo, cos_theta < 0.5f));
+/* l(x) = a / (1 + b x^c) + d x + e, with x^c = 2^(c log2 x) (x = 0 gives 0). */
+BRDF_FN realw L_CharlieFit(charlie_fit f, realw x) {
+  return f.a / (1.0f + f.b * brdf_exp2(f.c * brdf_log2(x))) + f.d * x + f.e;
+}
+
+/* Lambda(cos) = exp(l(cos)) below 0.5, exp(2 l(0.5) - l(1 - cos)) above: l is evaluated once, at
+   whichever argument the branch needs. */
+BRDF_FN realw Lambda_Charlie(charlie_fit f, realw cos_theta) {
+  intw low = cos_theta < 0.5f;
+  realw l = L_CharlieFit(f, select(1.0f - cos_theta, cos_theta, low));
+  return brdf_exp(select(2.0f * f.l_half - l, l, low));
 }
 
 /* Conty & Kulla 2017 height-correlated visibility with the fitted Lambda; 000 "Sheen visibility". */
 BRDF_FN realw V_Charlie(realw NdotL, realw NdotV, realw alpha) {
-  return 1.0f / ((1.0f + Lambda_Charlie(NdotV, alpha) + Lambda_Charlie(NdotL, alpha)) *
-                 (4.0f * NdotV * NdotL));
+  charlie_fit f = CharlieFit(alpha);
+  return 1.0f / ((1.0f + Lambda_Charlie(f, NdotV) + Lambda_Charlie(f, NdotL)) * (4.0f * NdotV * NdotL));
 }
 
 /* Neubelt & Pettineo 2013, after Ashikhmin & Premoze 2007; 000 "Sheen visibility", 003. */

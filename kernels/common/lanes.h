@@ -17,6 +17,9 @@ typedef uint uintw;
 #define VLOADW(i, p) ((p)[(i)])
 #define VSTOREW(v, i, p) ((p)[(i)] = (v))
 #define CONVERT_REALW(x) ((float)(x))
+#define CONVERT_INTW(x) convert_int(x)
+#define AS_INTW(x) as_int(x)
+#define AS_REALW(x) as_float(x)
 #elif BRDFCL_W == 4
 typedef float4 realw;
 typedef int4 intw;
@@ -24,6 +27,9 @@ typedef uint4 uintw;
 #define VLOADW vload4
 #define VSTOREW vstore4
 #define CONVERT_REALW convert_float4
+#define CONVERT_INTW convert_int4
+#define AS_INTW as_int4
+#define AS_REALW as_float4
 #elif BRDFCL_W == 8
 typedef float8 realw;
 typedef int8 intw;
@@ -31,6 +37,9 @@ typedef uint8 uintw;
 #define VLOADW vload8
 #define VSTOREW vstore8
 #define CONVERT_REALW convert_float8
+#define CONVERT_INTW convert_int8
+#define AS_INTW as_int8
+#define AS_REALW as_float8
 #elif BRDFCL_W == 16
 typedef float16 realw;
 typedef int16 intw;
@@ -38,8 +47,27 @@ typedef uint16 uintw;
 #define VLOADW vload16
 #define VSTOREW vstore16
 #define CONVERT_REALW convert_float16
+#define CONVERT_INTW convert_int16
+#define AS_INTW as_int16
+#define AS_REALW as_float16
 #else
 #error "BRDFCL_W must be 1, 4, 8 or 16"
+#endif
+
+/* p[i] for each lane's index, written as one vector expression so the compiler can emit a
+   hardware gather instead of a loop through private memory. */
+#if BRDFCL_W == 1
+#define GATHERW(p, i) ((p)[(i)])
+#elif BRDFCL_W == 4
+#define GATHERW(p, i) ((float4)((p)[(i).s0], (p)[(i).s1], (p)[(i).s2], (p)[(i).s3]))
+#elif BRDFCL_W == 8
+#define GATHERW(p, i) ((float8)((p)[(i).s0], (p)[(i).s1], (p)[(i).s2], (p)[(i).s3], \
+                                (p)[(i).s4], (p)[(i).s5], (p)[(i).s6], (p)[(i).s7]))
+#else
+#define GATHERW(p, i) ((float16)((p)[(i).s0], (p)[(i).s1], (p)[(i).s2], (p)[(i).s3], \
+                                 (p)[(i).s4], (p)[(i).s5], (p)[(i).s6], (p)[(i).s7], \
+                                 (p)[(i).s8], (p)[(i).s9], (p)[(i).sa], (p)[(i).sb], \
+                                 (p)[(i).sc], (p)[(i).sd], (p)[(i).se], (p)[(i).sf]))
 #endif
 
 typedef struct { realw x, y, z; } vec3w;

@@ -21,6 +21,19 @@ constexpr std::size_t kPage = 4096;
 
 std::size_t roundUp(std::size_t n, std::size_t m) { return (n + m - 1) / m * m; }
 
+// Samples a work-item evaluates (BRDFCL_W): 16 by default; BRDFCL_KERNEL_WIDTH = 1, 4, 8 or 16
+// overrides it for tuning on other devices. Planes stay padded to 16, a multiple of each.
+int kernelWidth() {
+  static const int w = [] {
+    const char* e = std::getenv("BRDFCL_KERNEL_WIDTH");
+    const int v = e ? std::atoi(e) : 16;
+    if (v != 1 && v != 4 && v != 8 && v != 16)
+      throw Error(fmt::format("BRDFCL_KERNEL_WIDTH={} is not supported; use 1, 4, 8 or 16", e));
+    return v;
+  }();
+  return w;
+}
+
 // Samples per launch: bounded by a fixed chunk and by the device's largest allocation.
 std::size_t chunkSize(const Runtime& rt, std::size_t bytesPerSample) {
   std::size_t byAlloc = std::size_t(rt.info().maxAlloc) / bytesPerSample;
@@ -78,7 +91,7 @@ Evaluator::Batch Evaluator::prepare(const std::vector<MaterialParams>& materials
     b.tableSize = int(table_->width);
   }
   try {
-    b.program = rt_.program("eval.cl", materialDefines(options_, features) + " -DBRDFCL_W=16");
+    b.program = rt_.program("eval.cl", materialDefines(options_, features) + fmt::format(" -DBRDFCL_W={}", kernelWidth()));
     const auto& ctx = rt_.context();
     b.materials = cl::Buffer(ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, b.packed.size() * sizeof(brdfcl_material),
                              b.packed.data());
@@ -163,7 +176,7 @@ void SoaBatch::run() {
       }
       inputsChanged_ = false;
     }
-    q.enqueueNDRangeKernel(d.kernel, cl::NullRange, cl::NDRange(roundUp(count_, kLanes) / kLanes));
+    q.enqueueNDRangeKernel(d.kernel, cl::NullRange, cl::NDRange(roundUp(count_, kLanes) / std::size_t(kernelWidth())));
     for (int k = 6; k < 9; ++k) {
       void* p = q.enqueueMapBuffer(d.planes[k], CL_TRUE, CL_MAP_READ, 0, capacity_ * 4);
       q.enqueueUnmapMemObject(d.planes[k], p);
@@ -239,7 +252,7 @@ std::vector<float> Evaluator::evaluateGrid(const std::vector<MaterialParams>& ma
       q.enqueueWriteBuffer(bDirs, CL_FALSE, 0, 6 * stride * 4, planes.data());
       for (std::size_t m0 = 0; m0 < nm; m0 += materialsPerLaunch) {
         const std::size_t mc = std::min(materialsPerLaunch, nm - m0);
-        kernel(cl::EnqueueArgs(q, cl::NDRange(stride / kLanes, mc)), bDirs, cl_uint(stride), b.materials,
+        kernel(cl::EnqueueArgs(q, cl::NDRange(stride / std::size_t(kernelWidth()), mc)), bDirs, cl_uint(stride), b.materials,
                cl_uint(m0), b.tableBuffer, b.tableSize, bOut);
         const std::size_t plane = stride * mc;
         q.enqueueReadBuffer(bOut, CL_TRUE, 0, 3 * plane * 4, out.data());

@@ -1,0 +1,113 @@
+// build/bin/brdfcl-bench: Google Benchmark over the batch kernel and its peers on the same
+// arrays in the same run (scalar C++ loop, OpenMP-SIMD loop, STREAM-triad memory bound), plus
+// grid evaluation and the sheen albedo bake. Every Eval/peer row reports items/s and bytes/s
+// at 40 bytes a sample, so ratios can be read off one JSON file.
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+#include <memory>
+
+#include "workload.hpp"
+
+using namespace brdfcl;
+
+namespace {
+
+Runtime& runtime() {
+  static Runtime rt;
+  return rt;
+}
+
+// One workload at a time: 64M samples are 2.5 GB, so consecutive rows share it.
+bench::Bench& benchFor(const std::string& lobe, std::size_t n) {
+  static std::unique_ptr<bench::Bench> current;
+  if (!current || current->size() != n || current->workload().name != lobe) {
+    current.reset();
+    current = std::make_unique<bench::Bench>(runtime(), lobe, n);
+  }
+  return *current;
+}
+
+void report(benchmark::State& state, std::size_t n) {
+  state.SetItemsProcessed(std::int64_t(state.iterations()) * std::int64_t(n));
+  state.SetBytesProcessed(std::int64_t(double(state.iterations()) * double(n) * bench::kBytesPerSample));
+}
+
+void BM_Eval(benchmark::State& state, std::string lobe) {
+  const std::size_t n = std::size_t(state.range(0));
+  auto& b = benchFor(lobe, n);
+  b.runKernel();  // warm-up: program build and first touch stay out of the timing
+  for (auto _ : state) b.runKernel();
+  report(state, n);
+}
+
+void BM_Peer(benchmark::State& state, std::string lobe, peers::Flavor flavor) {
+  const std::size_t n = std::size_t(state.range(0));
+  auto& b = benchFor(lobe, n);
+  b.runPeer(flavor);
+  for (auto _ : state) b.runPeer(flavor);
+  report(state, n);
+  b.runKernel();
+  state.counters["max_rel_dev_vs_kernel"] = b.peerDeviation();
+}
+
+// The memory roofline: STREAM triad bytes/s divided by 40 bytes a sample.
+void BM_StreamTriad(benchmark::State& state) {
+  const std::size_t floats = std::size_t(state.range(0));
+  double bytesPerSecond = 0;
+  for (auto _ : state) bytesPerSecond = peers::streamTriadBytesPerSecond(floats, 5);
+  state.counters["triad_GBps"] = bytesPerSecond / 1e9;
+  state.counters["samples_per_second_bound"] = bytesPerSecond / bench::kBytesPerSample;
+}
+
+void BM_EvalGrid(benchmark::State& state) {
+  const auto w = bench::makeWorkload("all");
+  Evaluator ev(runtime(), w.options);
+  Samples s;
+  const std::size_t n = std::size_t(state.range(0));
+  for (std::size_t i = 0; i < n; ++i) {
+    const float t = float(i) / float(n), z = 0.05f + 0.9f * t, r = std::sqrt(1 - z * z);
+    s.L.insert(s.L.end(), {r * std::cos(40.0f * t), r * std::sin(40.0f * t), z});
+    s.V.insert(s.V.end(), {r * std::cos(7.0f * t), -r * std::sin(7.0f * t), z});
+  }
+  ev.evaluateGrid(w.materials, s);
+  for (auto _ : state) benchmark::DoNotOptimize(ev.evaluateGrid(w.materials, s));
+  state.SetItemsProcessed(std::int64_t(state.iterations()) * std::int64_t(n * w.materials.size()));
+}
+
+void BM_LutBake(benchmark::State& state) {
+  const std::size_t size = std::size_t(state.range(0));
+  bakeSheenAlbedo(runtime(), SheenDistribution::Charlie, SheenVisibility::Charlie, 8);  // build the program
+  for (auto _ : state)
+    benchmark::DoNotOptimize(bakeSheenAlbedo(runtime(), SheenDistribution::Charlie, SheenVisibility::Charlie, size));
+  state.SetItemsProcessed(std::int64_t(state.iterations()) * std::int64_t(size * size));
+}
+
+void registerAll() {
+  const std::vector<std::int64_t> sizes = {1 << 10, 1 << 14, 1 << 18, 1 << 22, 1 << 26};
+  for (const auto& lobe : bench::workloadNames()) {
+    for (auto n : sizes) {
+      benchmark::RegisterBenchmark(("BM_Eval/" + lobe).c_str(), BM_Eval, lobe)->Arg(n)->UseRealTime()
+          ->Unit(benchmark::kMillisecond);
+      benchmark::RegisterBenchmark(("BM_SimdPeer/" + lobe).c_str(), BM_Peer, lobe, peers::Flavor::OpenMPSimd)
+          ->Arg(n)->UseRealTime()->Unit(benchmark::kMillisecond);
+      if (n <= (1 << 22))  // a single-threaded scalar loop over 64M samples takes many seconds
+        benchmark::RegisterBenchmark(("BM_ScalarPeer/" + lobe).c_str(), BM_Peer, lobe, peers::Flavor::Scalar)
+            ->Arg(n)->UseRealTime()->Unit(benchmark::kMillisecond);
+    }
+  }
+  benchmark::RegisterBenchmark("BM_StreamTriad", BM_StreamTriad)->Arg(1 << 25)->Iterations(1)->UseRealTime();
+  benchmark::RegisterBenchmark("BM_EvalGrid", BM_EvalGrid)->Arg(1 << 14)->UseRealTime()->Unit(benchmark::kMillisecond);
+  benchmark::RegisterBenchmark("BM_LutBake", BM_LutBake)->Arg(64)->UseRealTime()->Unit(benchmark::kMillisecond);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  registerAll();
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 2;
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

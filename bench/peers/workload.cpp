@@ -1,0 +1,106 @@
+// Workload generation: materials per lobe and in-domain directions (N.L, N.V in [0.01, 1]) from
+// a fast counter-based generator, since 64M samples must not take longer to make than to run.
+#include "workload.hpp"
+
+#include "brdfcl/error.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace brdfcl::bench {
+
+namespace {
+// SplitMix64: a counter hashed to 64 random bits; uniform floats in [0, 1).
+struct Rng {
+  std::uint64_t state;
+  std::uint64_t next() {
+    std::uint64_t z = (state += 0x9e3779b97f4a7c15ull);
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+    return z ^ (z >> 31);
+  }
+  float uniform() { return float(next() >> 40) * (1.0f / 16777216.0f); }
+  float in(float a, float b) { return a + (b - a) * uniform(); }
+};
+}  // namespace
+
+const std::vector<std::string>& workloadNames() {
+  static const std::vector<std::string> names = {"sheen", "specular", "clearcoat", "all"};
+  return names;
+}
+
+Workload makeWorkload(const std::string& name, std::uint64_t seed) {
+  const auto& names = workloadNames();
+  if (std::find(names.begin(), names.end(), name) == names.end())
+    throw Error("unknown --lobe value '" + name + "'; use sheen, specular, clearcoat or all");
+  Workload w;
+  w.name = name;
+  w.options.lobe = name == "sheen" ? Lobe::Sheen : name == "specular" ? Lobe::Specular
+                   : name == "clearcoat" ? Lobe::Clearcoat : Lobe::All;
+  Rng rng{seed * 0x2545f4914f6cdd1dull};
+  const bool sheen = name == "sheen" || name == "all";
+  const bool coat = name == "clearcoat" || name == "all";
+  const bool aniso = name == "specular" || name == "all";
+  for (int i = 0; i < 256; ++i) {
+    MaterialParams m;
+    m.baseColor = {rng.uniform(), rng.uniform(), rng.uniform()};
+    m.metallic = rng.uniform();
+    m.roughness = rng.in(0.05f, 1.0f);
+    if (sheen) {
+      m.sheenColor = {rng.in(0.01f, 1.0f), rng.in(0.01f, 1.0f), rng.in(0.01f, 1.0f)};
+      m.sheenRoughness = rng.in(0.05f, 1.0f);
+    }
+    if (coat) {
+      m.clearcoat = rng.in(0.01f, 1.0f);
+      m.clearcoatRoughness = rng.in(0.05f, 1.0f);
+    }
+    if (aniso) {
+      m.anisotropyStrength = rng.in(0.01f, 1.0f);
+      m.anisotropyRotation = rng.in(-3.14159f, 3.14159f);
+    }
+    w.materials.push_back(m);
+  }
+  return w;
+}
+
+Bench::Bench(Runtime& rt, const std::string& workload, std::size_t n, std::uint64_t seed)
+    : workload_(makeWorkload(workload, seed)), n_(n) {
+  evaluator_ = std::make_unique<Evaluator>(rt, workload_.options);
+  batch_ = std::make_unique<SoaBatch>(*evaluator_, workload_.materials, n);
+  Rng rng{seed};
+  float* dir[6];
+  for (int k = 0; k < 6; ++k) dir[k] = batch_->direction(k);
+  std::uint32_t* index = batch_->materialIndex();
+  for (std::size_t i = 0; i < n; ++i) {
+    for (int d = 0; d < 2; ++d) {
+      const float z = rng.in(0.01f, 1.0f), phi = rng.in(0.0f, 6.2831853f), s = std::sqrt(1.0f - z * z);
+      dir[3 * d][i] = s * std::cos(phi);
+      dir[3 * d + 1][i] = s * std::sin(phi);
+      dir[3 * d + 2][i] = z;
+    }
+    index[i] = std::uint32_t(rng.next() & 255u);
+  }
+  for (auto& p : peerOut_) p.assign(batch_->capacity(), 0.0f);
+  for (int k = 0; k < 6; ++k) peerInput_.dir[k] = batch_->directionPlane(k);
+  peerInput_.material = batch_->materialIndexPlane();
+  peerInput_.materials = batch_->packedMaterials().data();
+  peerInput_.sheenE = batch_->sheenAlbedoValues().data();
+  peerInput_.sheenESize = batch_->sheenAlbedoSize();
+  for (int c = 0; c < 3; ++c) peerInput_.out[c] = peerOut_[c].data();
+  peerInput_.count = n;
+}
+
+Bench::~Bench() = default;
+
+double Bench::peerDeviation() const {
+  double worst = 0;
+  for (int c = 0; c < 3; ++c) {
+    const float* k = batch_->result(c);
+    for (std::size_t i = 0; i < n_; ++i)
+      worst = std::max(worst, double(std::fabs(k[i] - peerOut_[c][i]) / (std::fabs(k[i]) + 1e-3f)));
+  }
+  return worst;
+}
+
+}  // namespace brdfcl::bench

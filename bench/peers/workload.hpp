@@ -1,0 +1,51 @@
+// The benchmark workloads shared by build/bin/brdfcl-bench and `brdfcl bench`: per lobe, 256
+// random materials carrying exactly that lobe's layers, and N random in-domain samples written
+// straight into a SoaBatch so that the kernel and the peers read the same arrays.
+#pragma once
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "brdfcl/evaluator.hpp"
+#include "peers.hpp"
+
+namespace brdfcl::bench {
+
+// "sheen": ratified sheen only, sheenColor D_Charlie V_Charlie (the --lobe sheen contract);
+// "specular": anisotropic base specular; "clearcoat": clearcoat only; "all": every layer with
+// min albedo scaling from the E table.
+const std::vector<std::string>& workloadNames();
+
+struct Workload {
+  std::string name;
+  EvalOptions options;
+  std::vector<MaterialParams> materials;
+};
+Workload makeWorkload(const std::string& name, std::uint64_t seed = 1);
+
+// Bytes a sample moves: L and V (24), the material index (4) and RGB out (12).
+constexpr double kBytesPerSample = 40.0;
+
+// A workload's batch of n samples on the device, plus separate output planes for the peers.
+class Bench {
+ public:
+  Bench(Runtime& rt, const std::string& workload, std::size_t n, std::uint64_t seed = 1);
+  ~Bench();
+  std::size_t size() const { return n_; }
+  const Workload& workload() const { return workload_; }
+  void runKernel() { batch_->run(); }
+  void runPeer(peers::Flavor flavor) { peers::run(flavor, workload_.name, peerInput_); }
+  // Largest |kernel - peer| / (|kernel| + 1e-3) over the batch, after both ran.
+  double peerDeviation() const;
+
+ private:
+  Workload workload_;
+  std::size_t n_;
+  std::unique_ptr<Evaluator> evaluator_;
+  std::unique_ptr<SoaBatch> batch_;
+  std::vector<float> peerOut_[3];
+  peers::Input peerInput_{};
+};
+
+}  // namespace brdfcl::bench
