@@ -8,5 +8,7 @@ namespace brdfcl::cli {
 void addDevicesCommand(CLI::App& app);
 void addEvalCommand(CLI::App& app);
 void addDemoCommand(CLI::App& app);
+void addBenchCommand(CLI::App& app);
+void addLutCommand(CLI::App& app);
 
 }  // namespace brdfcl::cli

@@ -12,6 +12,8 @@ int main(int argc, char** argv) {
   brdfcl::cli::addDevicesCommand(app);
   brdfcl::cli::addEvalCommand(app);
   brdfcl::cli::addDemoCommand(app);
+  brdfcl::cli::addBenchCommand(app);
+  brdfcl::cli::addLutCommand(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

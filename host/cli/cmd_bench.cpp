@@ -1,0 +1,115 @@
+// `brdfcl bench`: throughput of the batch kernel on N random in-domain samples over 256 random
+// materials, median of several runs after a warm-up, with the side-by-side ratios to the C++
+// peers (scalar loop, OpenMP-SIMD loop) and to the STREAM-triad memory bound, in one process.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "brdfcl/error.hpp"
+#include "commands.hpp"
+#include "workload.hpp"
+
+namespace brdfcl::cli {
+
+namespace {
+using Clock = std::chrono::steady_clock;
+
+template <class F>
+double medianSeconds(int runs, F&& f) {
+  std::vector<double> t;
+  for (int i = 0; i < runs; ++i) {
+    const auto t0 = Clock::now();
+    f();
+    t.push_back(std::chrono::duration<double>(Clock::now() - t0).count());
+  }
+  std::sort(t.begin(), t.end());
+  return t[t.size() / 2];
+}
+
+struct BenchArgs {
+  std::string lobe = "all", device;
+  std::size_t n = std::size_t(1) << 22;
+  int runs = 7;
+  bool json = false;
+};
+}  // namespace
+
+void addBenchCommand(CLI::App& app) {
+  auto args = std::make_shared<BenchArgs>();
+  auto* cmd = app.add_subcommand("bench", "Measure samples/s of the kernel and its ratios to CPU peers");
+  cmd->add_option("--lobe", args->lobe, "sheen|specular|clearcoat|all (default all)");
+  cmd->add_option("--n", args->n, "samples per run (default 4194304)");
+  cmd->add_option("--runs", args->runs, "timed runs after the warm-up; the median is reported (default 7)");
+  cmd->add_option("--device", args->device, "device index or name substring (default $BRDFCL_DEVICE, then 0)");
+  cmd->add_flag("--json", args->json, "print one JSON object on stdout");
+  cmd->callback([args] {
+    if (args->n == 0 || args->n > (std::size_t(1) << 28))
+      throw Error(fmt::format("--n {} is out of range; use 1 to 268435456", args->n));
+    if (args->runs < 1 || args->runs > 1000) throw Error(fmt::format("--runs {} is out of range; use 1 to 1000", args->runs));
+    const auto t0 = Clock::now();
+    Runtime rt(args->device);
+    bench::Bench b(rt, args->lobe, args->n);
+    b.runKernel();  // warm-up; also builds (or loads from PoCL's cache) the program
+    const double firstRun = std::chrono::duration<double>(Clock::now() - t0).count();
+    const double kernel = medianSeconds(args->runs, [&] { b.runKernel(); });
+    b.runPeer(peers::Flavor::OpenMPSimd);
+    const double simd = medianSeconds(args->runs, [&] { b.runPeer(peers::Flavor::OpenMPSimd); });
+    const double simdDeviation = b.peerDeviation();
+    const double scalar = medianSeconds(std::min(args->runs, 3), [&] { b.runPeer(peers::Flavor::Scalar); });
+    const double triad = peers::streamTriadBytesPerSecond(std::size_t(1) << 25, 5);
+
+    // End to end through the public API for a small batch: what a second `eval` of 1K pays.
+    const auto w = bench::makeWorkload(args->lobe);
+    Samples small;
+    for (int i = 0; i < 1024; ++i) {
+      const float z = 0.05f + 0.9f * float(i) / 1024.0f, s = std::sqrt(1 - z * z);
+      small.L.insert(small.L.end(), {s, 0.0f, z});
+      small.V.insert(small.V.end(), {-s * 0.6f, s * 0.8f, z});
+      small.material.push_back(std::uint32_t(i % 256));
+    }
+    Evaluator ev(rt, w.options);
+    ev.evaluate(w.materials, small);
+    const double e2e1k = medianSeconds(args->runs, [&] { ev.evaluate(w.materials, small); });
+
+    const double n = double(args->n);
+    const double sps = n / kernel, spsSimd = n / simd, spsScalar = n / scalar;
+    const double bound = triad / bench::kBytesPerSample;
+    if (args->json) {
+      nlohmann::json j = {
+          {"samples_per_second", sps},
+          {"n", args->n},
+          {"lobe", args->lobe},
+          {"device", rt.info().name},
+          {"runs", args->runs},
+          {"kernel_seconds_median", kernel},
+          {"first_run_seconds", firstRun},
+          {"eval_1024_seconds", e2e1k},
+          {"bytes_per_sample", bench::kBytesPerSample},
+          {"peers",
+           {{"scalar_cpp_samples_per_second", spsScalar},
+            {"openmp_simd_samples_per_second", spsSimd},
+            {"openmp_simd_max_rel_deviation", simdDeviation},
+            {"stream_triad_bytes_per_second", triad},
+            {"memory_bound_samples_per_second", bound}}},
+          {"ratios", {{"vs_scalar_cpp", sps / spsScalar}, {"vs_openmp_simd", sps / spsSimd}, {"of_memory_bound", sps / bound}}}};
+      std::printf("%s\n", j.dump(2).c_str());
+      return;
+    }
+    fmt::print("brdfcl bench: lobe {}, {} samples over 256 materials, median of {} runs, on {}\n", args->lobe,
+               args->n, args->runs, rt.info().name);
+    fmt::print("  {:<28}{:>12.1f} Msamples/s\n", "OpenCL kernel", sps / 1e6);
+    fmt::print("  {:<28}{:>12.1f} Msamples/s   kernel is {:.2f}x\n", "scalar C++ loop", spsScalar / 1e6, sps / spsScalar);
+    fmt::print("  {:<28}{:>12.1f} Msamples/s   kernel is {:.2f}x\n", "OpenMP-SIMD loop (2 cores)", spsSimd / 1e6,
+               sps / spsSimd);
+    fmt::print("  {:<28}{:>12.1f} Msamples/s   kernel is {:.0f}% of it ({:.1f} GB/s triad, {:.0f} B/sample)\n",
+               "memory bound", bound / 1e6, 100 * sps / bound, triad / 1e9, bench::kBytesPerSample);
+    fmt::print("  first run (device open, program build or cache load, warm-up): {:.3f} s\n", firstRun);
+    fmt::print("  1,024 samples end to end through Evaluator::evaluate (warm): {:.2f} ms\n", e2e1k * 1e3);
+  });
+}
+
+}  // namespace brdfcl::cli
