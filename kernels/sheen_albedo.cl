@@ -13,8 +13,14 @@ __kernel void bake_sheen_albedo(int size,
   int ix = get_global_id(0), iy = get_global_id(1);
   /* N.V is clamped as brdf_material clamps it, so the table answers what the lookup asks. */
   float sx = (float)ix / (float)(size - 1), ty = (float)iy / (float)(size - 1);
+#ifdef BRDFCL_SHEEN_ALBEDO_UNIFORM
+  /* Exported LUTs (kernels/lut.cl) sit on the grid engines sample: uniform in mu and r. */
+  float mu = max(sx, BRDFCL_MIN_COS);
+  float r = ty;
+#else
   float mu = max(sx * sx, BRDFCL_MIN_COS);
   float r = ty * ty;
+#endif
   float alpha = max(r * r, BRDFCL_MIN_SHEEN_ALPHA);
   float vx = sqrt(1.0f - mu * mu);
 

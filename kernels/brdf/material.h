@@ -97,13 +97,8 @@ BRDF_FN realw sheen_dv(realw hxy2, realw hn2, realw NdotL, realw NdotV, realw al
   return D * V;
 }
 
-/* The layered material, f(L, V) in 1/sr without the cosine. L, V: unit vectors in the shading
-   frame (N = +Z). `sheen_e`: E table for the batch's sheen options (unused without scaling). */
-BRDF_FN rgbw brdf_material(const material_lanes m, vec3w L, vec3w V, __global const float* sheen_e,
-                           int sheen_e_size) {
-  intw valid = (L.z > 0.0f) & (V.z > 0.0f);
-  realw NdotL = max(L.z, BRDFCL_MIN_COS), NdotV = max(V.z, BRDFCL_MIN_COS);
-
+/* Half-vector components with the degenerate L = -V case mapped to H = N. */
+BRDF_FN vec3w half_vector(vec3w L, vec3w V) {
   vec3w h = {L.x + V.x, L.y + V.y, L.z + V.z};
   /* L = -V with both within ~1e-15 of the horizon: |L + V|^2 underflows and H is undefined.
      Taking H = N there keeps f finite (documented clamp; such pairs sit far outside the domain). */
@@ -111,6 +106,17 @@ BRDF_FN rgbw brdf_material(const material_lanes m, vec3w L, vec3w V, __global co
   h.x = select(h.x, (realw)(0.0f), degenerate);
   h.y = select(h.y, (realw)(0.0f), degenerate);
   h.z = select(h.z, (realw)(1.0f), degenerate);
+  return h;
+}
+
+/* Base and sheen layers (everything below the clearcoat), f in 1/sr without the cosine. L, V:
+   unit vectors in the shading frame (N = +Z); not yet zeroed below the horizon. `sheen_e`: E
+   table for the batch's sheen options (unused without scaling). */
+BRDF_FN rgbw brdf_sheened(const material_lanes m, vec3w L, vec3w V, __global const float* sheen_e,
+                          int sheen_e_size) {
+  realw NdotL = max(L.z, BRDFCL_MIN_COS), NdotV = max(V.z, BRDFCL_MIN_COS);
+
+  vec3w h = half_vector(L, V);
   realw hxy2 = h.x * h.x + h.y * h.y, hn2 = h.z * h.z, h2 = hxy2 + hn2;
   realw inv_h = rsqrt(h2);
   /* 1 - V.H = |V - H|^2 / 2 for unit vectors: no cancellation as H -> V. */
@@ -182,26 +188,39 @@ BRDF_FN rgbw brdf_material(const material_lanes m, vec3w L, vec3w V, __global co
   }
 #endif
 
-  /* Clearcoat on top: 004 "Layering", Fresnel on N.V (energy-conserving simple layering). */
+  return result;
+}
+
+/* Clearcoat on top: 004 "Layering", Fresnel on Nc.V (energy-conserving simple layering). Lc, Vc
+   are L and V in the clearcoat normal's frame (Nc = +Z); in batch evaluation Nc = N. */
+BRDF_FN rgbw layer_clearcoat(rgbw below, realw clearcoat, realw clearcoat_alpha, vec3w Lc, vec3w Vc) {
+  rgbw result = below;
 #if BRDFCL_HAS_CLEARCOAT
-  {
-    realw Fc = F_Schlick(0.04f, pow5w(1.0f - V.z));
-    realw coat = m.clearcoat * Fc;
+  realw Fc = F_Schlick(0.04f, pow5w(1.0f - Vc.z));
+  realw coat = clearcoat * Fc;
 #if BRDFCL_LOBE == BRDFCL_LOBE_CLEARCOAT
-    result = rgbw_splat(0.0f);
+  result = rgbw_splat(0.0f);
 #else
-    result = rgbw_scale(result, 1.0f - coat);
+  result = rgbw_scale(result, 1.0f - coat);
 #endif
 #if BRDFCL_LOBE == BRDFCL_LOBE_ALL || BRDFCL_LOBE == BRDFCL_LOBE_CLEARCOAT
-    realw cc = D_GGX(hxy2, hn2, m.clearcoat_alpha) * V_SmithGGXCorrelated(NdotL, NdotV, m.clearcoat_alpha);
-    realw add = coat * cc;
-    result.r += add;
-    result.g += add;
-    result.b += add;
+  vec3w h = half_vector(Lc, Vc);
+  realw NcL = max(Lc.z, BRDFCL_MIN_COS), NcV = max(Vc.z, BRDFCL_MIN_COS);
+  realw cc = D_GGX(h.x * h.x + h.y * h.y, h.z * h.z, clearcoat_alpha) * V_SmithGGXCorrelated(NcL, NcV, clearcoat_alpha);
+  realw add = coat * cc;
+  result.r += add;
+  result.g += add;
+  result.b += add;
 #endif
-  }
 #endif
+  return result;
+}
 
+/* The layered material, f(L, V) in 1/sr without the cosine, 0 when N.L <= 0 or N.V <= 0. */
+BRDF_FN rgbw brdf_material(const material_lanes m, vec3w L, vec3w V, __global const float* sheen_e,
+                           int sheen_e_size) {
+  intw valid = (L.z > 0.0f) & (V.z > 0.0f);
+  rgbw result = layer_clearcoat(brdf_sheened(m, L, V, sheen_e, sheen_e_size), m.clearcoat, m.clearcoat_alpha, L, V);
   result.r = keep_or_zero(result.r, valid);
   result.g = keep_or_zero(result.g, valid);
   result.b = keep_or_zero(result.b, valid);

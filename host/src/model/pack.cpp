@@ -2,6 +2,8 @@
 // weights) is decoded once here rather than per sample on the device.
 #include "model/pack.hpp"
 
+#include "kernels/common/material_pack.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
@@ -24,38 +26,20 @@ float max3(const Rgb& c) { return std::max({c[0], c[1], c[2]}); }
 }  // namespace
 
 brdfcl_material packMaterial(const MaterialParams& m) {
-  brdfcl_material p{};
-  for (int i = 0; i < 3; ++i) p.base_color[i] = m.baseColor[i];
-  p.metallic = m.metallic;
-  const float alpha = m.roughness * m.roughness;
-  p.alpha = std::max(alpha, BRDFCL_MIN_ALPHA);
-  const float s2 = m.anisotropyStrength * m.anisotropyStrength;
-  p.alpha_t = std::max(alpha * (1.0f - s2) + s2, BRDFCL_MIN_ALPHA);  // 002: mix(alpha, 1, strength^2)
-  p.aniso_cos = std::cos(m.anisotropyRotation);
-  p.aniso_sin = std::sin(m.anisotropyRotation);
-  if (m.draftSheen) {
-    // 001: sheen roughness is the material roughness; (1 - reflectance) weights the additive lobe.
-    float reflectance = 0.0f;
-    for (int i = 0; i < 3; ++i) {
-      p.sheen_color[i] = m.draftColor[i] * m.draftIntensity;
-      reflectance = std::max(reflectance, 0.04f * (1.0f - m.metallic) + m.baseColor[i] * m.metallic);
-    }
-    p.sheen_max = 0.0f;  // no albedo scaling in the draft
-    p.sheen_alpha = std::max(alpha, BRDFCL_MIN_SHEEN_ALPHA);
-    p.sheen_roughness = m.roughness;
-    p.sheen_weight = 1.0f - reflectance;
-    p.flags = BRDFCL_MAT_DRAFT_SHEEN | (std::max({p.sheen_color[0], p.sheen_color[1], p.sheen_color[2]}) > 0.0f ? BRDFCL_MAT_SHEEN : 0u);
-  } else {
-    for (int i = 0; i < 3; ++i) p.sheen_color[i] = m.sheenColor[i];
-    p.sheen_max = max3(m.sheenColor);
-    p.sheen_alpha = std::max(m.sheenRoughness * m.sheenRoughness, BRDFCL_MIN_SHEEN_ALPHA);
-    p.sheen_roughness = m.sheenRoughness;
-    p.sheen_weight = 1.0f;
-    p.flags = p.sheen_max > 0.0f ? BRDFCL_MAT_SHEEN : 0u;
+  brdfcl_material_params q{};
+  for (int i = 0; i < 3; ++i) {
+    q.base_color[i] = m.baseColor[i];
+    q.sheen_color[i] = m.draftSheen ? m.draftColor[i] * m.draftIntensity : m.sheenColor[i];
   }
-  p.clearcoat = m.clearcoat;
-  p.clearcoat_alpha = std::max(m.clearcoatRoughness * m.clearcoatRoughness, BRDFCL_MIN_ALPHA);
-  return p;
+  q.metallic = m.metallic;
+  q.roughness = m.roughness;
+  q.sheen_roughness = m.sheenRoughness;
+  q.draft = m.draftSheen ? 1 : 0;
+  q.clearcoat = m.clearcoat;
+  q.clearcoat_roughness = m.clearcoatRoughness;
+  q.anisotropy_strength = m.anisotropyStrength;
+  q.anisotropy_rotation = m.anisotropyRotation;
+  return brdfcl_pack_material(q);
 }
 
 FeatureSet featuresOf(const std::vector<MaterialParams>& materials) {

@@ -1,0 +1,51 @@
+// The G-buffer: per-pixel world-space geometry and glTF material parameters read from (and
+// written to) a single-part OpenEXR file. The format is specified in docs/gbuffer.md.
+#pragma once
+#include <cstddef>
+#include <string>
+#include <vector>
+
+namespace brdfcl {
+
+// 3-channel vectors are interleaved xyz (or rgb) per pixel; every vector is row-major from the
+// top-left pixel. Optional channels are empty when absent; the shading then uses the glTF
+// defaults (0 for every extension factor, no emission, clearcoatN = N) and, without T, the
+// frame built from N that docs/gbuffer.md specifies.
+struct GBuffer {
+  int width = 0, height = 0;
+  // Required.
+  std::vector<float> P;          // world position
+  std::vector<float> N;          // world shading normal, unit length
+  std::vector<float> baseColor;  // linear RGB
+  std::vector<float> metallic, roughness;
+  std::vector<float> mask;  // 1 where a surface is present, 0 where the environment shows
+  // Optional.
+  std::vector<float> T;  // world tangent, unit length, perpendicular to N
+  std::vector<float> emissive;
+  std::vector<float> sheenColor, sheenRoughness;
+  std::vector<float> clearcoat, clearcoatRoughness, clearcoatN;
+  std::vector<float> anisotropyStrength, anisotropyRotation;  // rotation in radians, CCW from T
+
+  std::size_t pixelCount() const { return static_cast<std::size_t>(width) * static_cast<std::size_t>(height); }
+  bool hasTangent() const { return !T.empty(); }
+  bool hasEmissive() const { return !emissive.empty(); }
+  bool hasSheen() const { return !sheenColor.empty() || !sheenRoughness.empty(); }
+  bool hasClearcoat() const { return !clearcoat.empty() || !clearcoatRoughness.empty() || !clearcoatN.empty(); }
+  bool hasAnisotropy() const { return !anisotropyStrength.empty() || !anisotropyRotation.empty(); }
+};
+
+// Reads and checks a G-buffer EXR (HALF or FLOAT channels). Accepts the canonical names of
+// docs/gbuffer.md and, for N and P, Blender's multilayer pass names "<layer>.Normal.X" and
+// "<layer>.Position.X" (one layer; the canonical names win when both are present). Throws a
+// one-line brdfcl::Error starting with the file name for: a file that is missing, not EXR,
+// multi-part, deep or truncated; a data window other than the display window; a missing
+// required channel; an incomplete vector (T.X without T.Z); a used channel with x/y sampling
+// other than 1 or of type UINT; several Blender layers with the same pass.
+GBuffer readGBuffer(const std::string& path);
+
+// Writes every non-empty channel under its canonical name (HALF when `half`, else FLOAT; ZIP
+// compression), atomically (see writeAtomically). A required channel that is empty or any
+// channel whose size is not width·height·(1 or 3) is a caller bug: std::invalid_argument.
+void writeGBuffer(const std::string& path, const GBuffer& g, bool half = false);
+
+}  // namespace brdfcl

@@ -1,0 +1,44 @@
+// The scene file that goes with a G-buffer: camera, KHR_lights_punctual-style lights and the
+// environment. The JSON format is specified in docs/gbuffer.md ("Scene JSON").
+#pragma once
+#include <array>
+#include <string>
+#include <vector>
+
+namespace brdfcl {
+
+struct Light {
+  enum class Type { Directional, Point, Spot } type = Type::Point;
+  std::array<float, 3> color{1.0f, 1.0f, 1.0f};  // linear RGB
+  float intensity = 1.0f;  // lux (directional) or candela (point, spot)
+  float range = 0.0f;      // 0 = infinite
+  float innerCone = 0.0f, outerCone = 0.78539816f;  // radians (default pi/4), 0 <= inner < outer <= pi/2 (spot)
+  std::array<float, 3> position{};                    // world; point and spot
+  std::array<float, 3> direction{0.0f, 0.0f, -1.0f};  // unit; the way the light travels
+};
+
+struct Environment {
+  bool builtin = true;
+  std::string builtinKind = "sky";  // "sky" or "studio"
+  std::string path;                 // when !builtin: equirectangular EXR, resolved against the scene's directory
+  float intensity = 1.0f;
+  float rotation = 0.0f;  // radians about +Y
+};
+
+struct Scene {
+  std::array<float, 3> cameraPosition{0.0f, 0.0f, 5.0f}, cameraTarget{0.0f, 0.0f, 0.0f};
+  float fovDegrees = 40.0f;  // vertical field of view
+  std::vector<Light> lights;
+  Environment environment;
+};
+
+// Reads a scene JSON file; a relative environment path is resolved against the file's directory.
+// Every rejection is a one-line brdfcl::Error "<file>: <key path>: <what is wrong>", e.g.
+// "scene.json: lights[1].spot.outerConeAngle: expected a number in (innerConeAngle, pi/2], got 2".
+Scene readScene(const std::string& path);
+// The same from text; sourceName prefixes messages, baseDir resolves a relative environment path
+// ("" = the current directory). The environment file must exist and be readable; its contents
+// are read later (readExrRgb).
+Scene parseScene(const std::string& json, const std::string& sourceName, const std::string& baseDir);
+
+}  // namespace brdfcl

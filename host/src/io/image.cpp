@@ -1,0 +1,273 @@
+// OpenEXR channel reading with the checks every brdfcl EXR input needs, RGB EXR read/write, and
+// the PNG display pipeline (exposure, Khronos PBR Neutral, sRGB OETF, stb_image_write).
+// Every user-facing failure is one line naming the file; outputs go through writeAtomically.
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <ImathBox.h>
+#include <ImfChannelList.h>
+#include <ImfFrameBuffer.h>
+#include <ImfHeader.h>
+#include <ImfInputFile.h>
+#include <ImfOutputFile.h>
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <exception>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#define STB_IMAGE_WRITE_STATIC
+#define STB_IMAGE_WRITE_IMPLEMENTATION
+#include <stb/stb_image_write.h>
+
+#include "brdfcl/error.hpp"
+#include "brdfcl/image.hpp"
+#include "brdfcl/io.hpp"
+
+namespace brdfcl {
+namespace {
+
+// Keeps messages on one line whatever a file name or an OpenEXR message contains.
+std::string printable(const std::string& s, std::size_t maxLength = 300) {
+  std::string out;
+  for (char c : s) {
+    if (out.size() >= maxLength) {
+      out += "...";
+      break;
+    }
+    out += (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) ? ' ' : c;
+  }
+  return out;
+}
+
+// Guards the allocation below: a corrupt header can claim billions of pixels, and bad_alloc
+// would be an internal error (exit 1) rather than a message about the file.
+constexpr long long kMaxPixels = 1LL << 28;
+
+// OpenEXR version-field flags (OpenEXR file layout, "Version Field").
+constexpr std::uint32_t kNonImageFlag = 0x800;   // deep data
+constexpr std::uint32_t kMultiPartFlag = 0x1000;
+
+// The magic number and version field, read directly: InputFile would silently open part 0 of a
+// multi-part file, and its message for a non-EXR file is less direct than ours.
+void checkPreamble(const std::string& path, const std::string& shown) {
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) throw Error("cannot read '" + shown + "': " + std::strerror(errno));
+  unsigned char b[8] = {};
+  std::size_t got = 0;
+  while (got < sizeof b) {
+    const ssize_t n = ::read(fd, b + got, sizeof b - got);
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) {
+      const int err = errno;
+      ::close(fd);
+      throw Error("cannot read '" + shown + "': " + std::strerror(err));
+    }
+    if (n == 0) break;
+    got += static_cast<std::size_t>(n);
+  }
+  ::close(fd);
+  const bool magic = got >= 4 && b[0] == 0x76 && b[1] == 0x2f && b[2] == 0x31 && b[3] == 0x01;
+  if (!magic)
+    throw Error(shown + ": not an OpenEXR file (" + (got == 0 ? std::string("the file is empty") : "no EXR magic number") +
+                "); save the image as OpenEXR (.exr)");
+  if (got < 8) throw Error(shown + ": truncated OpenEXR file (ends inside the header); write the file again");
+  const std::uint32_t version = b[4] | (b[5] << 8) | (b[6] << 16) | (static_cast<std::uint32_t>(b[7]) << 24);
+  if (version & kMultiPartFlag)
+    throw Error(shown + ": multi-part OpenEXR file; brdfcl reads single-part files only: save all channels in one part");
+  if (version & kNonImageFlag)
+    throw Error(shown + ": deep OpenEXR file; brdfcl reads flat images only: flatten the deep data");
+}
+
+}  // namespace
+
+std::vector<std::vector<float>> readExrChannels(
+    const std::string& path,
+    const std::function<std::vector<std::string>(const std::vector<ExrChannelInfo>&)>& choose, int& width,
+    int& height) {
+  const std::string shown = printable(path);
+  checkPreamble(path, shown);
+  try {
+    Imf::InputFile in(path.c_str());
+    const Imf::Header& header = in.header();
+    const Imath::Box2i dw = header.dataWindow();
+    const Imath::Box2i disp = header.displayWindow();
+    // A data window smaller or larger than the display window would put G-buffer pixels at
+    // positions that no longer match the camera's raster, so it is refused rather than padded.
+    if (dw.min != disp.min || dw.max != disp.max)
+      throw Error(shown + ": the data window (" + std::to_string(dw.min.x) + "," + std::to_string(dw.min.y) + ")-(" +
+                  std::to_string(dw.max.x) + "," + std::to_string(dw.max.y) + ") differs from the display window (" +
+                  std::to_string(disp.min.x) + "," + std::to_string(disp.min.y) + ")-(" + std::to_string(disp.max.x) +
+                  "," + std::to_string(disp.max.y) + "); write the full, uncropped image");
+    const long long w = static_cast<long long>(dw.max.x) - dw.min.x + 1;
+    const long long h = static_cast<long long>(dw.max.y) - dw.min.y + 1;
+    if (w < 1 || h < 1 || w * h > kMaxPixels)
+      throw Error(shown + ": unsupported image size " + std::to_string(w) + "x" + std::to_string(h) +
+                  " (at most " + std::to_string(kMaxPixels) + " pixels)");
+
+    std::vector<ExrChannelInfo> available;
+    for (auto it = header.channels().begin(); it != header.channels().end(); ++it)
+      available.push_back({it.name(), it.channel().type == Imf::FLOAT});
+    const std::vector<std::string> names = choose(available);
+
+    for (const auto& name : names) {
+      const Imf::Channel* c = header.channels().findChannel(name);
+      if (!c) throw Error(shown + ": no channel '" + printable(name) + "'");
+      if (c->type == Imf::UINT)
+        throw Error(shown + ": channel '" + printable(name) + "' is UINT; expected HALF or FLOAT");
+      if (c->xSampling != 1 || c->ySampling != 1)
+        throw Error(shown + ": channel '" + printable(name) + "' has x/y sampling " + std::to_string(c->xSampling) +
+                    "/" + std::to_string(c->ySampling) + ", so its size differs from the image's " +
+                    std::to_string(w) + "x" + std::to_string(h) + "; write every channel at full resolution");
+    }
+    // Checked before reading: readPixels of missing scan lines may throw or leave fill values,
+    // depending on where the file ends.
+    if (!in.isComplete())
+      throw Error(shown + ": truncated OpenEXR file (some scan lines or tiles are missing); write the file again");
+
+    const std::size_t n = static_cast<std::size_t>(w * h);
+    std::vector<std::vector<float>> planes(names.size(), std::vector<float>(n));
+    Imf::FrameBuffer fb;
+    const std::size_t xStride = sizeof(float), yStride = sizeof(float) * static_cast<std::size_t>(w);
+    for (std::size_t i = 0; i < names.size(); ++i) {
+      // The slice base is the address of pixel (0, 0), which may lie outside the buffer.
+      char* base = reinterpret_cast<char*>(planes[i].data()) - static_cast<std::ptrdiff_t>(dw.min.x) * xStride -
+                   static_cast<std::ptrdiff_t>(dw.min.y) * static_cast<std::ptrdiff_t>(yStride);
+      fb.insert(names[i], Imf::Slice(Imf::FLOAT, base, xStride, yStride));
+    }
+    in.setFrameBuffer(fb);
+    in.readPixels(dw.min.y, dw.max.y);
+    width = static_cast<int>(w);
+    height = static_cast<int>(h);
+    return planes;
+  } catch (const Error&) {
+    throw;
+  } catch (const std::exception& e) {
+    // OpenEXR reports truncation inside the header or a corrupt chunk as Iex exceptions.
+    throw Error(shown + ": cannot read OpenEXR data (" + printable(e.what(), 200) +
+                "); the file is truncated or corrupt: write it again");
+  }
+}
+
+void writeExrRgb(const std::string& path, int width, int height, const std::vector<float>& rgb) {
+  if (width < 1 || height < 1 || rgb.size() != 3 * static_cast<std::size_t>(width) * static_cast<std::size_t>(height))
+    throw std::invalid_argument("writeExrRgb: rgb must hold 3 * width * height floats");
+  const std::string shown = printable(path);
+  writeAtomically(path, [&](const std::string& tmp) {
+    try {
+      Imf::Header header(width, height);
+      header.compression() = Imf::ZIP_COMPRESSION;
+      Imf::FrameBuffer fb;
+      const char* names[3] = {"R", "G", "B"};
+      // OpenEXR's Slice takes a non-const pointer for both directions; writing only reads it.
+      char* base = const_cast<char*>(reinterpret_cast<const char*>(rgb.data()));
+      for (int c = 0; c < 3; ++c) {
+        header.channels().insert(names[c], Imf::Channel(Imf::FLOAT));
+        fb.insert(names[c], Imf::Slice(Imf::FLOAT, base + c * sizeof(float), 3 * sizeof(float),
+                                       3 * sizeof(float) * static_cast<std::size_t>(width)));
+      }
+      Imf::OutputFile out(tmp.c_str(), header);
+      out.setFrameBuffer(fb);
+      out.writePixels(height);
+    } catch (const Error&) {
+      throw;
+    } catch (const std::exception& e) {
+      throw Error("cannot write '" + shown + "': " + printable(e.what(), 200));
+    }
+  });
+}
+
+std::vector<float> readExrRgb(const std::string& path, int& width, int& height) {
+  const std::string shown = printable(path);
+  bool grey = false;
+  const auto planes = readExrChannels(
+      path,
+      [&](const std::vector<ExrChannelInfo>& channels) -> std::vector<std::string> {
+        auto has = [&](const char* n) {
+          return std::any_of(channels.begin(), channels.end(), [&](const ExrChannelInfo& c) { return c.name == n; });
+        };
+        if (has("R") && has("G") && has("B")) return {"R", "G", "B"};
+        if (has("Y") && !has("R") && !has("G") && !has("B")) {
+          grey = true;
+          return {"Y"};
+        }
+        std::string list;
+        for (const auto& c : channels) list += (list.empty() ? "" : " ") + c.name;
+        throw Error(shown + ": expected channels R, G, B (or Y alone), found: " +
+                    printable(list.empty() ? std::string("none") : list, 200));
+      },
+      width, height);
+  const std::size_t n = planes[0].size();
+  std::vector<float> rgb(3 * n);
+  for (std::size_t i = 0; i < n; ++i)
+    for (int c = 0; c < 3; ++c) rgb[3 * i + c] = planes[grey ? 0 : c][i];
+  return rgb;
+}
+
+Rgb toneMapPbrNeutral(const Rgb& linear) {
+  // Constants of the Khronos reference implementation.
+  constexpr float startCompression = 0.8f - 0.04f;
+  constexpr float desaturation = 0.15f;
+  Rgb c;
+  for (int i = 0; i < 3; ++i) {
+    const float v = linear[i];
+    c[i] = !(v > 0.0f) ? 0.0f : std::min(v, std::numeric_limits<float>::max());
+  }
+  // The offset undoes the 4 % Fresnel floor of dielectrics, with a quadratic toe so that black
+  // stays black.
+  const float x = std::min({c[0], c[1], c[2]});
+  const float offset = x < 0.08f ? x - 6.25f * x * x : 0.04f;
+  for (float& v : c) v -= offset;
+  const float peak = std::max({c[0], c[1], c[2]});
+  if (peak < startCompression) return c;
+  const float d = 1.0f - startCompression;
+  const float newPeak = 1.0f - d * d / (peak + d - startCompression);
+  for (float& v : c) v *= newPeak / peak;
+  const float g = 1.0f - 1.0f / (desaturation * (peak - newPeak) + 1.0f);
+  for (float& v : c) v = v * (1.0f - g) + newPeak * g;
+  return c;
+}
+
+float toneMapPbrNeutral(float grey) { return toneMapPbrNeutral(Rgb{grey, grey, grey})[0]; }
+
+void toneMapPbrNeutral(std::vector<float>& rgb) {
+  if (rgb.size() % 3 != 0) throw std::invalid_argument("toneMapPbrNeutral: rgb size must be a multiple of 3");
+  for (std::size_t i = 0; i < rgb.size(); i += 3) {
+    const Rgb out = toneMapPbrNeutral(Rgb{rgb[i], rgb[i + 1], rgb[i + 2]});
+    rgb[i] = out[0];
+    rgb[i + 1] = out[1];
+    rgb[i + 2] = out[2];
+  }
+}
+
+std::uint8_t encodeSrgb8(float linear) {
+  const float v = !(linear > 0.0f) ? 0.0f : std::min(linear, 1.0f);
+  const float e = v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1.0f / 2.4f) - 0.055f;
+  return static_cast<std::uint8_t>(std::lround(std::clamp(e, 0.0f, 1.0f) * 255.0f));
+}
+
+void writePng(const std::string& path, int width, int height, const std::vector<float>& linearRgb, float exposure) {
+  if (width < 1 || height < 1 ||
+      linearRgb.size() != 3 * static_cast<std::size_t>(width) * static_cast<std::size_t>(height))
+    throw std::invalid_argument("writePng: linearRgb must hold 3 * width * height floats");
+  if (!std::isfinite(exposure))
+    throw Error("cannot write '" + printable(path) + "': exposure must be a finite number of stops");
+  const float scale = std::exp2(exposure);
+  std::vector<std::uint8_t> pixels(linearRgb.size());
+  for (std::size_t i = 0; i < linearRgb.size(); i += 3) {
+    const Rgb t = toneMapPbrNeutral(Rgb{linearRgb[i] * scale, linearRgb[i + 1] * scale, linearRgb[i + 2] * scale});
+    for (int c = 0; c < 3; ++c) pixels[i + c] = encodeSrgb8(t[c]);
+  }
+  const std::string shown = printable(path);
+  writeAtomically(path, [&](const std::string& tmp) {
+    if (!stbi_write_png(tmp.c_str(), width, height, 3, pixels.data(), 3 * width))
+      throw Error("cannot write '" + shown + "': the PNG encoder failed (disk full or image too large?)");
+  });
+}
+
+}  // namespace brdfcl
