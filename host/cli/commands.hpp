@@ -7,7 +7,8 @@ namespace brdfcl::cli {
 
 void addDevicesCommand(CLI::App& app);
 void addEvalCommand(CLI::App& app);
-void addDemoCommand(CLI::App& app);
+void addAlbedoCommand(CLI::App& app);
+void addRenderCommands(CLI::App& app);
 void addBenchCommand(CLI::App& app);
 void addLutCommand(CLI::App& app);
 

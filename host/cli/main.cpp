@@ -11,7 +11,8 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   brdfcl::cli::addDevicesCommand(app);
   brdfcl::cli::addEvalCommand(app);
-  brdfcl::cli::addDemoCommand(app);
+  brdfcl::cli::addAlbedoCommand(app);
+  brdfcl::cli::addRenderCommands(app);
   brdfcl::cli::addBenchCommand(app);
   brdfcl::cli::addLutCommand(app);
   try {

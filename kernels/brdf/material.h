@@ -55,14 +55,18 @@ typedef struct {
   realw draft; /* 1 for the experimental draft's sheen, else 0 */
 } material_lanes;
 
-/* All lanes share one material (grid evaluation): splat. */
-BRDF_FN material_lanes material_splat(__global const brdfcl_material* m) {
-  material_lanes out;
+/* All lanes share one material (grid evaluation, shading): splat. OpenCL C 1.2 has no generic
+   address space, hence a global and a private entry point over one body. */
 #define BRDFCL_SPLAT_LANE(name, field) out.name = (realw)(m->field);
-  BRDFCL_MATERIAL_LANES(BRDFCL_SPLAT_LANE)
-  out.draft = (realw)((m->flags & BRDFCL_MAT_DRAFT_SHEEN) ? 1.0f : 0.0f);
+#define BRDFCL_SPLAT_BODY                                                    \
+  material_lanes out;                                                        \
+  BRDFCL_MATERIAL_LANES(BRDFCL_SPLAT_LANE)                                   \
+  out.draft = (realw)((m->flags & BRDFCL_MAT_DRAFT_SHEEN) ? 1.0f : 0.0f);     \
   return out;
-}
+BRDF_FN material_lanes material_splat(__global const brdfcl_material* m) { BRDFCL_SPLAT_BODY }
+#ifdef __OPENCL_VERSION__
+BRDF_FN material_lanes material_splat_private(const brdfcl_material* m) { BRDFCL_SPLAT_BODY }
+#endif
 
 /* Each lane has its own material index: one vector gather per field, records being
    sizeof(brdfcl_material) / 4 floats apart. */

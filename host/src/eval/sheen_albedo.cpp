@@ -13,6 +13,7 @@
 #include "brdfcl/evaluator.hpp"
 #include "brdfcl/io.hpp"
 #include "eval/quadrature.hpp"
+#include "eval/sheen_albedo_bake.hpp"
 #include "model/pack.hpp"
 
 namespace brdfcl {
@@ -40,6 +41,11 @@ float SheenAlbedoTable::lookup(float mu, float sheenRoughness) const {
 
 SheenAlbedoTable bakeSheenAlbedo(Runtime& rt, SheenDistribution d, SheenVisibility v, std::size_t size,
                                  int nodesPerPanel) {
+  return bakeSheenAlbedoFrom(rt, "sheen_albedo.cl", d, v, size, nodesPerPanel);
+}
+
+SheenAlbedoTable bakeSheenAlbedoFrom(Runtime& rt, const std::string& kernelFile, SheenDistribution d,
+                                     SheenVisibility v, std::size_t size, int nodesPerPanel) {
   if (size < 2) throw Error(fmt::format("sheen albedo table size {} is too small; use at least 2", size));
   SheenAlbedoTable table;
   table.distribution = d;
@@ -70,7 +76,7 @@ SheenAlbedoTable bakeSheenAlbedo(Runtime& rt, SheenDistribution d, SheenVisibili
   FeatureSet f;
   f.sheen = true;
   try {
-    auto program = rt.program("sheen_albedo.cl", materialDefines(o, f) + " -DBRDFCL_W=16");
+    auto program = rt.program(kernelFile, materialDefines(o, f) + " -DBRDFCL_W=16");
     const auto& ctx = rt.context();
     auto ro = CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR;
     cl::Buffer bu(ctx, ro, u.size() * 4, u.data()), buw(ctx, ro, uw.size() * 4, uw.data());

@@ -1,5 +1,5 @@
-// `brdfcl demo` (what `make demo` runs): the built-in gallery's directional albedo per lobe at
-// a few view angles, evaluated on the device. Albedo <= 1 is energy conservation at a glance.
+// `brdfcl albedo`: the built-in gallery's directional albedo per lobe at a few view angles,
+// evaluated on the device. Albedo <= 1 is energy conservation at a glance.
 #include <cmath>
 
 #include <fmt/format.h>
@@ -10,9 +10,9 @@
 
 namespace brdfcl::cli {
 
-void addDemoCommand(CLI::App& app) {
+void addAlbedoCommand(CLI::App& app) {
   auto device = std::make_shared<std::string>();
-  auto* cmd = app.add_subcommand("demo", "Print the directional albedo of the built-in material gallery");
+  auto* cmd = app.add_subcommand("albedo", "Print the directional albedo of the built-in material gallery");
   cmd->add_option("--device", *device, "device index or name substring (default $BRDFCL_DEVICE, then 0)");
   cmd->callback([device] {
     Runtime rt(*device);
@@ -28,7 +28,7 @@ void addDemoCommand(CLI::App& app) {
       Evaluator ev(rt, o);
       perLobe.push_back(directionalAlbedo(ev, materials, mus));
     }
-    fmt::print("brdfcl demo on {} ({})\n", rt.info().name, rt.info().platform);
+    fmt::print("brdfcl albedo on {} ({})\n", rt.info().name, rt.info().platform);
     fmt::print("Directional albedo: integral of f(L,V) N.L over the hemisphere of L, as luminance\n"
                "(Rec. 709 Y of the RGB albedo). Defaults: Charlie sheen, min albedo scaling.\n\n");
     for (std::size_t m = 0; m < materials.size(); ++m) {

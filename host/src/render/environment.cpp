@@ -1,0 +1,97 @@
+// Environment images: the built-in procedural sky, studio and uniform (furnace) environments,
+// or an equirectangular EXR, in the layout of kernels/common/environment.h (3 planes, v = 0 at +Y).
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "brdfcl/error.hpp"
+#include "brdfcl/image.hpp"
+#include "brdfcl/render.hpp"
+#include "eval/quadrature.hpp"
+
+namespace brdfcl {
+
+namespace {
+struct Dir {
+  double x, y, z;
+};
+
+// The inverse of env_uv (kernels/common/environment.h) at a texel centre.
+Dir texelDirection(int x, int y, int w, int h) {
+  const double u = (x + 0.5) / w, v = (y + 0.5) / h;
+  const double phi = (u - 0.5) * 2 * M_PI, theta = v * M_PI;
+  return {std::sin(theta) * std::sin(phi), std::cos(theta), -std::sin(theta) * std::cos(phi)};
+}
+
+void builtinRadiance(const std::string& kind, Dir d, float rgb[3]) {
+  if (kind == "uniform") {
+    rgb[0] = rgb[1] = rgb[2] = 1.0f;
+    return;
+  }
+  if (kind == "sky") {
+    // Horizon-to-zenith gradient, a warm ground, and a small bright sun.
+    const double t = std::max(0.0, d.y);
+    const double sky[3] = {0.9 - 0.65 * t, 0.95 - 0.5 * t, 1.0 - 0.15 * t};
+    const double ground[3] = {0.18, 0.16, 0.14};
+    const Dir sun = {0.4 / 0.883, 0.6 / 0.883, 0.5 / 0.883};
+    const double cosSun = d.x * sun.x + d.y * sun.y + d.z * sun.z;
+    for (int c = 0; c < 3; ++c) rgb[c] = float(d.y >= 0 ? sky[c] : ground[c]);
+    if (cosSun > std::cos(0.035)) rgb[0] += 400.0f, rgb[1] += 380.0f, rgb[2] += 340.0f;
+    return;
+  }
+  // Studio: dim walls, a large overhead softbox in front, two vertical strips, a darker floor.
+  double v = d.y >= 0 ? 0.06 : 0.03;
+  if (d.y > 0.55 && d.z > 0.1 && std::fabs(d.x) < 0.45) v = 6.0;
+  if (std::fabs(d.y) < 0.5 && std::fabs(std::fabs(d.x) - 0.85) < 0.08 && d.z < 0.2) v = 3.0;
+  for (int c = 0; c < 3; ++c) rgb[c] = float(v);
+}
+}  // namespace
+
+std::vector<float> environmentPlanes(const Environment& env, int& width, int& height) {
+  std::vector<float> planes;
+  if (env.builtin) {
+    if (env.builtinKind != "sky" && env.builtinKind != "studio" && env.builtinKind != "uniform")
+      throw Error(fmt::format("unknown built-in environment '{}'; use sky, studio or uniform", env.builtinKind));
+    width = 512;
+    height = 256;
+    const std::size_t n = std::size_t(width) * height;
+    planes.assign(3 * n, 0.0f);
+    for (int y = 0; y < height; ++y)
+      for (int x = 0; x < width; ++x) {
+        float rgb[3];
+        builtinRadiance(env.builtinKind, texelDirection(x, y, width, height), rgb);
+        for (int c = 0; c < 3; ++c) planes[c * n + std::size_t(y) * width + x] = rgb[c] * env.intensity;
+      }
+    return planes;
+  }
+  const auto rgb = readExrRgb(env.path, width, height);
+  if (width < 8 || height < 4)
+    throw Error(fmt::format("{}: environment of {}x{} texels is too small; use at least 8x4", env.path, width, height));
+  const std::size_t n = std::size_t(width) * height;
+  planes.resize(3 * n);
+  for (std::size_t i = 0; i < n; ++i)
+    for (int c = 0; c < 3; ++c) planes[c * n + i] = rgb[3 * i + c] * env.intensity;
+  return planes;
+}
+
+double fresnelWeightedLambert(double mu) {
+  mu = std::max(mu, 1e-4);
+  const double V[3] = {std::sqrt(1 - mu * mu), 0.0, mu};
+  static const auto cosRule = compositeGaussLegendre({0.0, 0.1, 0.4, 0.7, 1.0}, 16);
+  static const auto phiRule = compositeGaussLegendre({0.0, M_PI / 2, M_PI}, 24);
+  double acc = 0;
+  for (std::size_t i = 0; i < cosRule.nodes.size(); ++i) {
+    const double u = cosRule.nodes[i], s = std::sqrt(1 - u * u);
+    for (std::size_t j = 0; j < phiRule.nodes.size(); ++j) {
+      const double L[3] = {s * std::cos(phiRule.nodes[j]), s * std::sin(phiRule.nodes[j]), u};
+      double H[3], len = 0;
+      for (int c = 0; c < 3; ++c) H[c] = L[c] + V[c], len += H[c] * H[c];
+      len = std::sqrt(len);
+      const double vh = (V[0] * H[0] + V[1] * H[1] + V[2] * H[2]) / len;
+      acc += 2 * cosRule.weights[i] * phiRule.weights[j] * std::pow(1 - vh, 5) * u / M_PI;
+    }
+  }
+  return acc;
+}
+
+}  // namespace brdfcl

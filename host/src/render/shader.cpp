@@ -1,0 +1,393 @@
+// The deferred shader's host side: environment prefiltering on the device (kernels/
+// ibl_prefilter.cl), the tables it reads (GGX DFG, sheen albedo, Fresnel-weighted Lambert), the
+// G-buffer planes, and the built-in spheres scene (kernels/gbuffer_spheres.cl).
+#include <algorithm>
+#include <cmath>
+#include <type_traits>
+
+#include <fmt/format.h>
+
+#include "brdfcl/error.hpp"
+#include "brdfcl/evaluator.hpp"
+#include "brdfcl/lut.hpp"
+#include "brdfcl/render.hpp"
+#include "kernels/common/shading_layout.h"
+#include "model/pack.hpp"
+
+namespace brdfcl {
+
+static_assert(sizeof(brdfcl_light) == 16 * 4 && std::is_trivially_copyable_v<brdfcl_light>);
+static_assert(sizeof(brdfcl_camera) == 16 * 4 && offsetof(brdfcl_camera, forward) == 48);
+static_assert(sizeof(brdfcl_sphere) == 20 * 4 && offsetof(brdfcl_sphere, anisotropy_rotation) == 64);
+
+namespace {
+constexpr int kPrefilterLevels = 6;  // roughness 0, 0.2, ..., 1
+constexpr int kIrradianceW = 64, kIrradianceH = 32;
+constexpr int kDfgSize = 64, kFresnelLambertSize = 64;
+
+using V3 = std::array<float, 3>;
+V3 sub(V3 a, V3 b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+V3 cross(V3 a, V3 b) { return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]}; }
+V3 normalized(V3 a) {
+  const float l = std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
+  return {a[0] / l, a[1] / l, a[2] / l};
+}
+
+brdfcl_camera cameraFor(const Scene& s, int w, int h) {
+  brdfcl_camera c{};
+  const V3 f = normalized(sub(s.cameraTarget, s.cameraPosition));
+  const V3 worldUp = std::fabs(f[1]) > 0.999f ? V3{0, 0, -1} : V3{0, 1, 0};
+  const V3 r = normalized(cross(f, worldUp)), u = cross(r, f);
+  for (int i = 0; i < 3; ++i) {
+    c.position[i] = s.cameraPosition[i];
+    c.right[i] = r[i];
+    c.up[i] = u[i];
+    c.forward[i] = f[i];
+  }
+  c.tan_half_fov = std::tan(s.fovDegrees * float(M_PI) / 360.0f);
+  c.aspect = float(w) / float(h);
+  return c;
+}
+
+std::vector<brdfcl_light> packLights(const Scene& s) {
+  std::vector<brdfcl_light> out;
+  for (const auto& l : s.lights) {
+    brdfcl_light p{};
+    p.type = l.type == Light::Type::Directional ? BRDFCL_LIGHT_DIRECTIONAL
+             : l.type == Light::Type::Point     ? BRDFCL_LIGHT_POINT
+                                                : BRDFCL_LIGHT_SPOT;
+    for (int i = 0; i < 3; ++i) {
+      p.color[i] = l.color[i] * l.intensity;
+      p.position[i] = l.position[i];
+      p.direction[i] = l.direction[i];
+    }
+    p.range = l.range;
+    // KHR_lights_punctual's smooth cone falloff, as scale and offset of cos(angle).
+    p.cone_scale = 1.0f / std::max(1e-3f, std::cos(l.innerCone) - std::cos(l.outerCone));
+    p.cone_offset = -std::cos(l.outerCone) * p.cone_scale;
+    out.push_back(p);
+  }
+  if (out.empty()) out.push_back(brdfcl_light{});  // OpenCL buffers cannot be empty; count stays 0
+  return out;
+}
+
+int levelW(int w0, int k) { return std::max(w0 >> k, 8); }
+int levelH(int h0, int k) { return std::max(h0 >> k, 4); }
+
+// G-buffer channels -> the planes of kernels/common/shading_layout.h, defaults for absent ones.
+std::vector<float> gbufferPlanes(const GBuffer& g) {
+  const std::size_t n = std::size_t(g.width) * g.height;
+  std::vector<float> planes(GB_PLANES * n, 0.0f);
+  auto put3 = [&](const std::vector<float>& v, int first) {
+    if (v.empty()) return;
+    for (std::size_t i = 0; i < n; ++i)
+      for (int c = 0; c < 3; ++c) planes[(first + c) * n + i] = v[3 * i + c];
+  };
+  auto put1 = [&](const std::vector<float>& v, int plane) {
+    if (!v.empty()) std::copy(v.begin(), v.end(), planes.begin() + plane * n);
+  };
+  put3(g.P, GB_PX);
+  put3(g.N, GB_NX);
+  put3(g.T, GB_TX);
+  put3(g.baseColor, GB_BASE_R);
+  put1(g.metallic, GB_METALLIC);
+  put1(g.roughness, GB_ROUGHNESS);
+  put1(g.mask, GB_MASK);
+  put3(g.emissive, GB_EMISSIVE_R);
+  put3(g.sheenColor, GB_SHEEN_R);
+  put1(g.sheenRoughness, GB_SHEEN_ROUGHNESS);
+  put1(g.clearcoat, GB_CLEARCOAT);
+  put1(g.clearcoatRoughness, GB_CLEARCOAT_ROUGHNESS);
+  put3(g.clearcoatN, GB_CCN_X);
+  put1(g.anisotropyStrength, GB_ANISO_STRENGTH);
+  put1(g.anisotropyRotation, GB_ANISO_ROTATION);
+  for (std::size_t i = 0; i < planes.size(); ++i)
+    if (!std::isfinite(planes[i]))
+      throw Error(fmt::format("G-buffer pixel ({}, {}) has a non-finite value in plane {}; fix the renderer's output",
+                              (i % n) % g.width, (i % n) / g.width, i / n));
+  return planes;
+}
+
+cl::Buffer readOnly(const cl::Context& ctx, const std::vector<float>& v) {
+  return cl::Buffer(ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, std::max<std::size_t>(v.size(), 1) * 4,
+                    const_cast<float*>(v.data()));
+}
+}  // namespace
+
+Scene spheresScene() {
+  Scene s;
+  s.cameraPosition = {0.0f, 0.0f, 13.0f};
+  s.cameraTarget = {0.0f, 0.0f, 0.0f};
+  s.fovDegrees = 30.0f;
+  Light key;
+  key.type = Light::Type::Directional;
+  key.direction = normalized({0.5f, -0.6f, -0.62f});
+  key.intensity = 2.5f;
+  key.color = {1.0f, 0.96f, 0.9f};
+  Light fill;
+  fill.type = Light::Type::Point;
+  fill.position = {-6.0f, 2.0f, 6.0f};
+  fill.intensity = 30.0f;
+  fill.color = {0.8f, 0.85f, 1.0f};
+  s.lights = {key, fill};
+  s.environment.builtin = true;
+  s.environment.builtinKind = "studio";
+  s.environment.intensity = 1.0f;
+  return s;
+}
+
+GBuffer renderSpheresGBuffer(Runtime& rt, const Scene& scene, int width, int height) {
+  if (width < 1 || height < 1 || width > 16384 || height > 16384)
+    throw Error(fmt::format("image size {}x{} is out of range; use 1 to 16384 per side", width, height));
+  std::vector<brdfcl_sphere> spheres;
+  for (int row = 0; row < 6; ++row)
+    for (int col = 0; col < 6; ++col) {
+      brdfcl_sphere s{};
+      s.center[0] = (col - 2.5f) * 1.05f;
+      s.center[1] = (2.5f - row) * 1.05f;
+      s.radius = 0.46f;
+      const float t = col / 5.0f;
+      float base[3] = {0.5f, 0.5f, 0.5f};
+      s.roughness = 0.5f;
+      switch (row) {
+        case 0:  // white sheen over dark blue cloth, sheen roughness 0 .. 1
+        case 1:  // coloured sheen over dark red cloth
+          base[0] = row ? 0.25f : 0.02f, base[1] = 0.02f, base[2] = row ? 0.03f : 0.12f;
+          s.roughness = 0.8f;
+          s.sheen_color[0] = 1.0f, s.sheen_color[1] = row ? 0.45f : 1.0f, s.sheen_color[2] = row ? 0.3f : 1.0f;
+          s.sheen_roughness = 0.05f + 0.95f * t;
+          break;
+        case 2:  // clearcoat over a rough orange base, clearcoat roughness 0 .. 1
+          base[0] = 0.8f, base[1] = 0.25f, base[2] = 0.05f;
+          s.roughness = 0.7f;
+          s.clearcoat = 1.0f;
+          s.clearcoat_roughness = t;
+          break;
+        case 3:  // brushed metal, anisotropy strength 0 .. 1
+          base[0] = 0.95f, base[1] = 0.93f, base[2] = 0.88f;
+          s.metallic = 1.0f;
+          s.roughness = 0.3f;
+          s.anisotropy_strength = t;
+          break;
+        case 4:  // anisotropy 0.8, rotation 0 .. pi
+          base[0] = 0.95f, base[1] = 0.64f, base[2] = 0.54f;
+          s.metallic = 1.0f;
+          s.roughness = 0.3f;
+          s.anisotropy_strength = 0.8f;
+          s.anisotropy_rotation = float(M_PI) * t;
+          break;
+        default:  // gold, metallic 1 on even columns, 0 on odd; roughness 0 .. 1
+          base[0] = 1.0f, base[1] = 0.78f, base[2] = 0.34f;
+          s.metallic = col % 2 == 0 ? 1.0f : 0.0f;
+          s.roughness = t;
+      }
+      for (int c = 0; c < 3; ++c) s.base_color[c] = base[c];
+      spheres.push_back(s);
+    }
+  const std::size_t np = std::size_t(width) * height;
+  std::vector<float> planes(GB_PLANES * np);
+  try {
+    auto program = rt.program("gbuffer_spheres.cl");
+    cl::Buffer bs(rt.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, spheres.size() * sizeof(brdfcl_sphere),
+                  spheres.data());
+    cl::Buffer out(rt.context(), CL_MEM_WRITE_ONLY, planes.size() * 4);
+    cl::Kernel k(program, "gbuffer_spheres");
+    k.setArg(0, bs);
+    k.setArg(1, int(spheres.size()));
+    k.setArg(2, width);
+    k.setArg(3, height);
+    k.setArg(4, cameraFor(scene, width, height));
+    k.setArg(5, out);
+    rt.queue().enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(std::size_t(width), std::size_t(height)));
+    rt.queue().enqueueReadBuffer(out, CL_TRUE, 0, planes.size() * 4, planes.data());
+  } catch (const cl::Error&) {
+    rethrowOpenCL("ray-casting the spheres scene");
+  }
+  GBuffer g;
+  g.width = width;
+  g.height = height;
+  auto get3 = [&](int first) {
+    std::vector<float> v(3 * np);
+    for (std::size_t i = 0; i < np; ++i)
+      for (int c = 0; c < 3; ++c) v[3 * i + c] = planes[(first + c) * np + i];
+    return v;
+  };
+  auto get1 = [&](int plane) { return std::vector<float>(planes.begin() + plane * np, planes.begin() + (plane + 1) * np); };
+  g.P = get3(GB_PX);
+  g.N = get3(GB_NX);
+  g.T = get3(GB_TX);
+  g.baseColor = get3(GB_BASE_R);
+  g.metallic = get1(GB_METALLIC);
+  g.roughness = get1(GB_ROUGHNESS);
+  g.mask = get1(GB_MASK);
+  g.sheenColor = get3(GB_SHEEN_R);
+  g.sheenRoughness = get1(GB_SHEEN_ROUGHNESS);
+  g.clearcoat = get1(GB_CLEARCOAT);
+  g.clearcoatRoughness = get1(GB_CLEARCOAT_ROUGHNESS);
+  g.clearcoatN = get3(GB_CCN_X);
+  g.anisotropyStrength = get1(GB_ANISO_STRENGTH);
+  g.anisotropyRotation = get1(GB_ANISO_ROTATION);
+  return g;
+}
+
+struct Shader::State {
+  Runtime& rt;
+  Scene scene;
+  EvalOptions options;
+  int envW = 0, envH = 0;
+  cl::Buffer background, ggx, charlie, irradiance, dfg, sheenE, fresnelLambert, lights;
+  int sheenESize = 0, lightCount = 0;
+  cl::Program program;
+};
+
+Shader::Shader(Runtime& rt, const Scene& scene, EvalOptions options)
+    : s_(std::make_unique<State>(State{rt, scene, options})) {
+  auto& s = *s_;
+  const auto env = environmentPlanes(scene.environment, s.envW, s.envH);
+  const auto& ctx = rt.context();
+  auto& q = rt.queue();
+  try {
+    // Source chain: the environment and its 2x2 box mips down to 8x4.
+    std::vector<int> ws{s.envW}, hs{s.envH};
+    while (ws.back() > 8 && hs.back() > 4) ws.push_back(std::max(ws.back() / 2, 8)), hs.push_back(std::max(hs.back() / 2, 4));
+    std::size_t chainFloats = 0;
+    for (std::size_t k = 0; k < ws.size(); ++k) chainFloats += 3 * std::size_t(ws[k]) * hs[k];
+    cl::Buffer chain(ctx, CL_MEM_READ_WRITE, chainFloats * 4);
+    q.enqueueWriteBuffer(chain, CL_TRUE, 0, env.size() * 4, env.data());
+    auto prefilterProgram = rt.program("ibl_prefilter.cl");
+    cl::Kernel down(prefilterProgram, "env_downsample");
+    std::size_t offset = 0;
+    for (std::size_t k = 0; k + 1 < ws.size(); ++k) {
+      const std::size_t size = 3 * std::size_t(ws[k]) * hs[k], next = 3 * std::size_t(ws[k + 1]) * hs[k + 1];
+      // Sub-buffer offsets need the device's base alignment; copy through temporaries instead.
+      cl::Buffer a(ctx, CL_MEM_READ_WRITE, size * 4), b(ctx, CL_MEM_READ_WRITE, next * 4);
+      q.enqueueCopyBuffer(chain, a, offset * 4, 0, size * 4);
+      down.setArg(0, a);
+      down.setArg(1, ws[k]);
+      down.setArg(2, hs[k]);
+      down.setArg(3, b);
+      down.setArg(4, ws[k + 1]);
+      down.setArg(5, hs[k + 1]);
+      q.enqueueNDRangeKernel(down, cl::NullRange, cl::NDRange(std::size_t(ws[k + 1]), std::size_t(hs[k + 1])));
+      q.enqueueCopyBuffer(b, chain, 0, (offset + size) * 4, next * 4);
+      offset += size;
+    }
+    s.background = readOnly(ctx, env);
+
+    // Prefiltered chains: level k of kPrefilterLevels at roughness k / (levels - 1).
+    cl::Kernel pre(prefilterProgram, "env_prefilter");
+    auto prefilterChain = [&](int kind) {
+      std::vector<float> all;
+      for (int k = 0; k < kPrefilterLevels; ++k) {
+        const int w = levelW(s.envW, k), h = levelH(s.envH, k);
+        cl::Buffer out(ctx, CL_MEM_WRITE_ONLY, 3 * std::size_t(w) * h * 4);
+        pre.setArg(0, chain);
+        pre.setArg(1, s.envW);
+        pre.setArg(2, s.envH);
+        pre.setArg(3, int(ws.size()));
+        pre.setArg(4, kind);
+        pre.setArg(5, float(k) / float(kPrefilterLevels - 1));
+        pre.setArg(6, cl_uint(kind == 0 ? (k == 0 ? 1 : 128) : 256));
+        pre.setArg(7, out);
+        pre.setArg(8, w);
+        pre.setArg(9, h);
+        q.enqueueNDRangeKernel(pre, cl::NullRange, cl::NDRange(std::size_t(w), std::size_t(h)));
+        std::vector<float> level(3 * std::size_t(w) * h);
+        q.enqueueReadBuffer(out, CL_TRUE, 0, level.size() * 4, level.data());
+        all.insert(all.end(), level.begin(), level.end());
+      }
+      return readOnly(ctx, all);
+    };
+    s.ggx = prefilterChain(0);
+    s.charlie = prefilterChain(1);
+    {
+      cl::Buffer out(ctx, CL_MEM_WRITE_ONLY, 3 * kIrradianceW * kIrradianceH * 4);
+      pre.setArg(0, chain);
+      pre.setArg(1, s.envW);
+      pre.setArg(2, s.envH);
+      pre.setArg(3, int(ws.size()));
+      pre.setArg(4, 2);
+      pre.setArg(5, 1.0f);
+      pre.setArg(6, cl_uint(512));
+      pre.setArg(7, out);
+      pre.setArg(8, kIrradianceW);
+      pre.setArg(9, kIrradianceH);
+      q.enqueueNDRangeKernel(pre, cl::NullRange, cl::NDRange(kIrradianceW, kIrradianceH));
+      std::vector<float> irr(3 * kIrradianceW * kIrradianceH);
+      q.enqueueReadBuffer(out, CL_TRUE, 0, irr.size() * 4, irr.data());
+      s.irradiance = readOnly(ctx, irr);
+    }
+
+    const auto dfg = bakeLut(rt, LutKind::GgxDfg, kDfgSize);
+    s.dfg = readOnly(ctx, dfg.values);
+    const auto e = cachedSheenAlbedo(rt, options.sheenDistribution, options.sheenVisibility);
+    s.sheenE = readOnly(ctx, e.values);
+    s.sheenESize = int(e.width);
+    std::vector<float> fl(kFresnelLambertSize);
+    for (int i = 0; i < kFresnelLambertSize; ++i) fl[i] = float(fresnelWeightedLambert(double(i) / (kFresnelLambertSize - 1)));
+    s.fresnelLambert = readOnly(ctx, fl);
+    const auto lights = packLights(scene);
+    s.lightCount = int(scene.lights.size());
+    s.lights = cl::Buffer(ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, lights.size() * sizeof(brdfcl_light),
+                          const_cast<brdfcl_light*>(lights.data()));
+
+    FeatureSet all;
+    all.sheen = all.ratifiedSheen = all.clearcoat = all.anisotropy = true;
+    EvalOptions o = options;
+    o.lobe = Lobe::All;
+    s.program = rt.program("shade.cl", materialDefines(o, all));
+  } catch (const cl::Error&) {
+    rethrowOpenCL("preparing image-based light");
+  }
+}
+
+Shader::~Shader() = default;
+
+Image Shader::shade(const GBuffer& g) {
+  auto& s = *s_;
+  const auto planes = gbufferPlanes(g);
+  Image img;
+  img.width = g.width;
+  img.height = g.height;
+  const std::size_t np = std::size_t(g.width) * g.height;
+  std::vector<float> out(3 * np);
+  try {
+    const auto& ctx = s.rt.context();
+    cl::Buffer bg = readOnly(ctx, planes), bo(ctx, CL_MEM_WRITE_ONLY, out.size() * 4);
+    cl::Kernel k(s.program, "shade");
+    int a = 0;
+    k.setArg(a++, bg);
+    k.setArg(a++, g.width);
+    k.setArg(a++, g.height);
+    k.setArg(a++, cameraFor(s.scene, g.width, g.height));
+    k.setArg(a++, s.lights);
+    k.setArg(a++, s.lightCount);
+    k.setArg(a++, s.background);
+    k.setArg(a++, s.ggx);
+    k.setArg(a++, s.charlie);
+    k.setArg(a++, s.irradiance);
+    k.setArg(a++, s.envW);
+    k.setArg(a++, s.envH);
+    k.setArg(a++, kPrefilterLevels);
+    k.setArg(a++, kIrradianceW);
+    k.setArg(a++, kIrradianceH);
+    k.setArg(a++, s.scene.environment.rotation);
+    k.setArg(a++, s.dfg);
+    k.setArg(a++, kDfgSize);
+    k.setArg(a++, s.sheenE);
+    k.setArg(a++, s.sheenESize);
+    k.setArg(a++, s.fresnelLambert);
+    k.setArg(a++, kFresnelLambertSize);
+    k.setArg(a++, bo);
+    s.rt.queue().enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(std::size_t(g.width), std::size_t(g.height)));
+    s.rt.queue().enqueueReadBuffer(bo, CL_TRUE, 0, out.size() * 4, out.data());
+  } catch (const cl::Error&) {
+    rethrowOpenCL("shading the G-buffer");
+  }
+  img.rgb.resize(3 * np);
+  for (std::size_t i = 0; i < np; ++i)
+    for (int c = 0; c < 3; ++c) img.rgb[3 * i + c] = out[c * np + i];
+  return img;
+}
+
+}  // namespace brdfcl
