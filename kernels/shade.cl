@@ -141,7 +141,13 @@ __kernel void shade(__global const float* restrict gb, int width, int height, br
     float lod = rough * (float)(prefilter_levels - 1);
     float3 spec = env_chain(ggx_chain, env_w, env_h, prefilter_levels, R, env_rotation, lod);
     float3 irr = env_chain(irradiance, irr_w, irr_h, 1, N, env_rotation, 0.0f);
-    float2 ab = lut2(dfg, dfg_size, nv, rough);
+    /* The DFG table is isotropic: an anisotropic lobe is looked up at the RMS of its two alphas,
+       the best single match to its directional albedo against the reference (within 2.5% up to
+       strength 0.6, 10% at strength 1); its radiance is still read at the base roughness (002). */
+    float dfg_rough = q.anisotropy_strength > 0.0f
+                          ? sqrt(sqrt(0.5f * (packed.alpha_t * packed.alpha_t + packed.alpha * packed.alpha)))
+                          : rough;
+    float2 ab = lut2(dfg, dfg_size, nv, dfg_rough);
     float C = lut1(fresnel_lambert, fl_size, nv);
     float3 base = (float3)(q.base_color[0], q.base_color[1], q.base_color[2]);
     float3 dielectric = irr * base * (0.96f * (1.0f - C)) + spec * (0.04f * ab.x + ab.y);

@@ -3,6 +3,8 @@
 // G-buffer planes, and the built-in spheres scene (kernels/gbuffer_spheres.cl).
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <mutex>
 #include <type_traits>
 
 #include <fmt/format.h>
@@ -230,20 +232,59 @@ GBuffer renderSpheresGBuffer(Runtime& rt, const Scene& scene, int width, int hei
   return g;
 }
 
+// Everything the shader derives from the environment and the sheen options: prepared once per
+// (runtime, environment, options) and shared by every Shader of the process.
+struct PreparedLight {
+  int envW = 0, envH = 0;
+  cl::Buffer background, ggx, charlie, irradiance, dfg, sheenE, fresnelLambert;
+  int sheenESize = 0;
+};
+
+namespace {
+std::shared_ptr<const PreparedLight> prepareLight(Runtime& rt, const Environment& environment, const EvalOptions& options);
+}
+
 struct Shader::State {
   Runtime& rt;
   Scene scene;
   EvalOptions options;
-  int envW = 0, envH = 0;
-  cl::Buffer background, ggx, charlie, irradiance, dfg, sheenE, fresnelLambert, lights;
-  int sheenESize = 0, lightCount = 0;
+  std::shared_ptr<const PreparedLight> light;
+  cl::Buffer lights;
+  int lightCount = 0;
   cl::Program program;
 };
 
 Shader::Shader(Runtime& rt, const Scene& scene, EvalOptions options)
-    : s_(std::make_unique<State>(State{rt, scene, options})) {
+    : s_(std::make_unique<State>(State{rt, scene, options, nullptr, {}, 0, {}})) {
   auto& s = *s_;
-  const auto env = environmentPlanes(scene.environment, s.envW, s.envH);
+  s.light = prepareLight(rt, scene.environment, options);
+  try {
+    const auto lights = packLights(scene);
+    s.lightCount = int(scene.lights.size());
+    s.lights = cl::Buffer(rt.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, lights.size() * sizeof(brdfcl_light),
+                          const_cast<brdfcl_light*>(lights.data()));
+    FeatureSet all;
+    all.sheen = all.ratifiedSheen = all.clearcoat = all.anisotropy = true;
+    EvalOptions o = options;
+    o.lobe = Lobe::All;
+    s.program = rt.program("shade.cl", materialDefines(o, all));
+  } catch (const cl::Error&) {
+    rethrowOpenCL("preparing the shader");
+  }
+}
+
+namespace {
+std::shared_ptr<const PreparedLight> prepareLight(Runtime& rt, const Environment& environment, const EvalOptions& options) {
+  static std::mutex mutex;
+  static std::map<std::string, std::shared_ptr<const PreparedLight>> cache;
+  const std::string key = fmt::format("{}|{}|{}|{}|{}|{}|{}", static_cast<const void*>(&rt), environment.builtin,
+                                      environment.builtinKind, environment.path, environment.intensity,
+                                      toString(options.sheenDistribution), toString(options.sheenVisibility));
+  std::lock_guard<std::mutex> lock(mutex);
+  if (auto it = cache.find(key); it != cache.end()) return it->second;
+  auto prepared = std::make_shared<PreparedLight>();
+  auto& s = *prepared;
+  const auto env = environmentPlanes(environment, s.envW, s.envH);
   const auto& ctx = rt.context();
   auto& q = rt.queue();
   try {
@@ -326,20 +367,13 @@ Shader::Shader(Runtime& rt, const Scene& scene, EvalOptions options)
     std::vector<float> fl(kFresnelLambertSize);
     for (int i = 0; i < kFresnelLambertSize; ++i) fl[i] = float(fresnelWeightedLambert(double(i) / (kFresnelLambertSize - 1)));
     s.fresnelLambert = readOnly(ctx, fl);
-    const auto lights = packLights(scene);
-    s.lightCount = int(scene.lights.size());
-    s.lights = cl::Buffer(ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, lights.size() * sizeof(brdfcl_light),
-                          const_cast<brdfcl_light*>(lights.data()));
-
-    FeatureSet all;
-    all.sheen = all.ratifiedSheen = all.clearcoat = all.anisotropy = true;
-    EvalOptions o = options;
-    o.lobe = Lobe::All;
-    s.program = rt.program("shade.cl", materialDefines(o, all));
   } catch (const cl::Error&) {
     rethrowOpenCL("preparing image-based light");
   }
+  cache.emplace(key, prepared);
+  return prepared;
 }
+}  // namespace
 
 Shader::~Shader() = default;
 
@@ -362,21 +396,21 @@ Image Shader::shade(const GBuffer& g) {
     k.setArg(a++, cameraFor(s.scene, g.width, g.height));
     k.setArg(a++, s.lights);
     k.setArg(a++, s.lightCount);
-    k.setArg(a++, s.background);
-    k.setArg(a++, s.ggx);
-    k.setArg(a++, s.charlie);
-    k.setArg(a++, s.irradiance);
-    k.setArg(a++, s.envW);
-    k.setArg(a++, s.envH);
+    k.setArg(a++, s.light->background);
+    k.setArg(a++, s.light->ggx);
+    k.setArg(a++, s.light->charlie);
+    k.setArg(a++, s.light->irradiance);
+    k.setArg(a++, s.light->envW);
+    k.setArg(a++, s.light->envH);
     k.setArg(a++, kPrefilterLevels);
     k.setArg(a++, kIrradianceW);
     k.setArg(a++, kIrradianceH);
     k.setArg(a++, s.scene.environment.rotation);
-    k.setArg(a++, s.dfg);
+    k.setArg(a++, s.light->dfg);
     k.setArg(a++, kDfgSize);
-    k.setArg(a++, s.sheenE);
-    k.setArg(a++, s.sheenESize);
-    k.setArg(a++, s.fresnelLambert);
+    k.setArg(a++, s.light->sheenE);
+    k.setArg(a++, s.light->sheenESize);
+    k.setArg(a++, s.light->fresnelLambert);
     k.setArg(a++, kFresnelLambertSize);
     k.setArg(a++, bo);
     s.rt.queue().enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(std::size_t(g.width), std::size_t(g.height)));
