@@ -7,6 +7,7 @@
 #include <cmath>
 #include <memory>
 
+#include "brdfcl/render.hpp"
 #include "workload.hpp"
 
 using namespace brdfcl;
@@ -83,6 +84,17 @@ void BM_LutBake(benchmark::State& state) {
   state.SetItemsProcessed(std::int64_t(state.iterations()) * std::int64_t(size * size));
 }
 
+// Deferred shading of the built-in spheres G-buffer (two lights and image-based light).
+void BM_Shade(benchmark::State& state) {
+  const int side = int(state.range(0));
+  const Scene scene = spheresScene();
+  const GBuffer g = renderSpheresGBuffer(runtime(), scene, side, side);
+  Shader shader(runtime(), scene);
+  shader.shade(g);
+  for (auto _ : state) benchmark::DoNotOptimize(shader.shade(g));
+  state.SetItemsProcessed(std::int64_t(state.iterations()) * side * side);
+}
+
 void registerAll() {
   const std::vector<std::int64_t> sizes = {1 << 10, 1 << 14, 1 << 18, 1 << 22, 1 << 26};
   for (const auto& lobe : bench::workloadNames()) {
@@ -98,6 +110,7 @@ void registerAll() {
   }
   benchmark::RegisterBenchmark("BM_StreamTriad", BM_StreamTriad)->Arg(1 << 25)->Iterations(1)->UseRealTime();
   benchmark::RegisterBenchmark("BM_EvalGrid", BM_EvalGrid)->Arg(1 << 14)->UseRealTime()->Unit(benchmark::kMillisecond);
+  benchmark::RegisterBenchmark("BM_Shade", BM_Shade)->Arg(512)->UseRealTime()->Unit(benchmark::kMillisecond);
   benchmark::RegisterBenchmark("BM_LutBake", BM_LutBake)->Arg(64)->UseRealTime()->Unit(benchmark::kMillisecond);
 }
 

@@ -3,6 +3,10 @@
 // directional albedo, and the demo render through the CLI.
 #include <gtest/gtest.h>
 
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -193,6 +197,58 @@ TEST(Shading, DemoRenderHasTheRightSizeAndIsNotBlank) {
   const auto [lo, hi] = std::minmax_element(rgb.begin(), rgb.end());
   EXPECT_LT(*lo, 0.1f);
   EXPECT_GT(*hi, 0.5f);
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+
+namespace {
+
+struct CliRun {
+  int status;
+  std::string err;
+};
+
+CliRun runCli(const std::string& args, const std::filesystem::path& dir) {
+  const auto errFile = dir / "stderr.txt";
+  const std::string cmd = std::string(BRDFCL_CLI_PATH) + " " + args + " > /dev/null 2> " + errFile.string();
+  const int raw = std::system(cmd.c_str());
+  std::ifstream in(errFile);
+  std::string err((std::istreambuf_iterator<char>(in)), {});
+  std::filesystem::remove(errFile);
+  return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, err};
+}
+
+// Bad G-buffers, scenes and options of shade/render/gbuffer: exit 2, one line naming the
+// culprit, and no output left behind.
+TEST(ShadingCli, BadInputsGiveOneLineErrorsAndNoOutput) {
+  const auto dir = std::filesystem::temp_directory_path() / ("brdfcl-shadecli-" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const auto g = dir / "g.exr", s = dir / "s.json", notExr = dir / "text.exr", out = dir / "img.exr";
+  ASSERT_EQ(runCli("gbuffer --scene spheres --size 8x8 --out " + g.string(), dir).status, 0);
+  std::ofstream(s) << R"({"camera": {"position": [0, 0, 13]}, "lights": [{"type": "directional", "direction": [0, 0, -1]}],
+                        "environment": "builtin"})";
+  std::ofstream(notExr) << "not an image";
+  std::ofstream(dir / "bad.json") << R"({"lights": [{"type": "laser"}]})";
+  ASSERT_EQ(runCli("shade --gbuffer " + g.string() + " --scene " + s.string() + " --out " + out.string(), dir).status, 0);
+  std::filesystem::remove(out);
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"shade --gbuffer " + notExr.string() + " --scene " + s.string() + " --out " + out.string(), "text.exr"},
+      {"shade --gbuffer " + (dir / "missing.exr").string() + " --scene " + s.string() + " --out " + out.string(), "missing.exr"},
+      {"shade --gbuffer " + g.string() + " --scene " + (dir / "bad.json").string() + " --out " + out.string(), "bad.json"},
+      {"shade --gbuffer " + g.string() + " --scene " + s.string() + " --out " + (dir / "img.png").string(), "--out"},
+      {"render --scene teapot --out " + (dir / "x.png").string(), "teapot"},
+      {"render --scene spheres --size 12by4 --out " + (dir / "x.png").string(), "--size"},
+      {"gbuffer --scene spheres --size 0x4 --out " + g.string() + ".2.exr", "--size"},
+  };
+  for (const auto& [args, culprit] : cases) {
+    const CliRun r = runCli(args, dir);
+    EXPECT_EQ(r.status, 2) << args << "\n" << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << args << "\n" << r.err;
+    EXPECT_NE(r.err.find(culprit), std::string::npos) << args << "\n" << r.err;
+  }
+  EXPECT_FALSE(std::filesystem::exists(out));
+  EXPECT_FALSE(std::filesystem::exists(dir / "x.png"));
   std::filesystem::remove_all(dir);
 }
 
