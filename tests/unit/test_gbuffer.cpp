@@ -594,7 +594,7 @@ TEST_F(Scene, ErrorsNameFileAndKeyPath) {
       {R"({"environment": 3})", "s.json: environment: expected \"builtin\" or an object with \"path\" or \"builtin\", got 3"},
       {R"({"environment": {}})", "s.json: environment: needs \"path\": \"env.exr\" or \"builtin\": \"sky\"|\"studio\""},
       {R"({"environment": {"path": "a.exr", "builtin": "sky"}})", "s.json: environment: has both \"path\" and \"builtin\"; keep one"},
-      {R"({"environment": {"builtin": "forest"}})", "s.json: environment.builtin: expected \"sky\" or \"studio\", got string \"forest\""},
+      {R"({"environment": {"builtin": "forest"}})", "s.json: environment.builtin: expected \"sky\", \"studio\" or \"uniform\", got string \"forest\""},
       {R"({"environment": {"path": ""}})", "s.json: environment.path: expected a non-empty file name string, got string \"\""},
       {R"({"environment": {"path": 5}})", "s.json: environment.path: expected a non-empty file name string, got 5"},
       {R"({"environment": {"path": "nope.exr"}})", "s.json: environment.path: cannot read '"},

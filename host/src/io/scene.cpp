@@ -261,11 +261,11 @@ class SceneReader {
     if (path != v.end() && builtin != v.end())
       fail("environment", "has both \"path\" and \"builtin\"; keep one");
     if (path == v.end() && builtin == v.end())
-      fail("environment", "needs \"path\": \"env.exr\" or \"builtin\": \"sky\"|\"studio\"");
+      fail("environment", "needs \"path\": \"env.exr\" or \"builtin\": \"sky\"|\"studio\"|\"uniform\"");
     if (builtin != v.end()) {
       const std::string k = builtin->is_string() ? builtin->get<std::string>() : std::string();
-      if (k != "sky" && k != "studio")
-        fail("environment.builtin", "expected \"sky\" or \"studio\", got " + describe(*builtin));
+      if (k != "sky" && k != "studio" && k != "uniform")
+        fail("environment.builtin", "expected \"sky\", \"studio\" or \"uniform\", got " + describe(*builtin));
       e.builtinKind = k;
     } else {
       if (!path->is_string() || path->get_ref<const std::string&>().empty())
