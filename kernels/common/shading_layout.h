@@ -1,6 +1,6 @@
 /* What the shading kernels share with the host: the G-buffer plane order, the punctual light
    and camera records, and the environment's equirectangular mapping. Included verbatim by the
-   host (host/src/shade/*.cpp static_asserts the records) and by kernels/shade.cl. */
+   host (host/src/render/shader.cpp static_asserts the records) and by kernels/shade.cl. */
 #ifndef BRDFCL_SHADING_LAYOUT_H
 #define BRDFCL_SHADING_LAYOUT_H
 

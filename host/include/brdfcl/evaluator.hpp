@@ -4,6 +4,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <mutex>
 #include <vector>
 
 #include "brdfcl/io.hpp"
@@ -37,6 +38,15 @@ SheenAlbedoTable cachedSheenAlbedo(Runtime& rt, SheenDistribution d, SheenVisibi
 
 class SoaBatch;
 
+// Thread safety. One Runtime may be shared by any number of threads (see runtime.hpp), and so
+// may one Evaluator: evaluate(), evaluateGrid() and sheenAlbedo() may run concurrently on the
+// same Evaluator (the table is baked once, under a lock; options() never changes). Each call
+// creates its own cl::Kernel and buffers, so concurrent calls never share kernel arguments and
+// give bit-for-bit the results of the same calls made one after another. The simplest pattern
+// is one Evaluator per thread on one shared Runtime. A SoaBatch is NOT thread-safe: use each
+// batch from one thread at a time (different batches, even of one Evaluator, may run
+// concurrently). The Evaluator and Runtime must outlive every call and every SoaBatch.
+// Tests: tests/unit/test_threads.cpp.
 class Evaluator {
  public:
   Evaluator(Runtime& rt, EvalOptions options);
@@ -59,7 +69,8 @@ class Evaluator {
 
   Runtime& rt_;
   EvalOptions options_;
-  std::unique_ptr<SheenAlbedoTable> table_;
+  std::mutex tableMutex_;                    // guards the lazy bake of table_
+  std::unique_ptr<SheenAlbedoTable> table_;  // set once, never replaced
 };
 
 // Samples as structure-of-arrays planes in page-aligned host memory that the device reads and

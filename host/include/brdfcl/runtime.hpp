@@ -36,6 +36,16 @@ const char* clErrorName(int code);
 // CL_NAME (code)", with the build log for a cl::BuildError. `what` says what brdfcl was doing.
 [[noreturn]] void rethrowOpenCL(const std::string& what);
 
+// Thread safety. One Runtime may be shared by any number of threads, each evaluating through
+// its own (or a shared) Evaluator: program() guards its cache with a mutex (concurrent first
+// requests for one variant wait for a single build); device(), context(), info() and
+// standardOption() are fixed after construction. queue() is one in-order cl::CommandQueue that
+// every thread enqueues on; OpenCL makes enqueueing thread-safe, but a cl::Kernel's arguments
+// are not, so every brdfcl launch path creates its own cl::Kernel (SoaBatch per batch,
+// evaluateGrid() and bakeSheenAlbedo() per call) and callers using queue() directly must do the
+// same. A blocking read or finish() on the shared queue may also wait for other threads' work,
+// which costs time, never correctness. Construction and destruction are not concurrent-safe:
+// destroy the Runtime only after every thread is done with it.
 class Runtime {
  public:
   // selector: "" (then $BRDFCL_DEVICE, then device 0), an index, or a name substring.

@@ -64,7 +64,11 @@ void fillDirectionPlanes(const Samples& s, std::size_t first, std::size_t count,
 
 Evaluator::Evaluator(Runtime& rt, EvalOptions options) : rt_(rt), options_(options) {}
 
+// Baked on first use; the lock makes concurrent first calls bake once and see the finished
+// table (a failed bake leaves table_ empty and the next call tries again). table_ is never
+// replaced afterwards, so the returned reference stays valid for the Evaluator's lifetime.
 const SheenAlbedoTable& Evaluator::sheenAlbedo() {
+  std::lock_guard<std::mutex> lock(tableMutex_);
   if (!table_)
     table_ = std::make_unique<SheenAlbedoTable>(
         cachedSheenAlbedo(rt_, options_.sheenDistribution, options_.sheenVisibility));
@@ -87,8 +91,9 @@ Evaluator::Batch Evaluator::prepare(const std::vector<MaterialParams>& materials
   Batch b;
   for (const auto& m : materials) b.packed.push_back(packMaterial(m));
   if (features.needsSheenAlbedo(options_)) {
-    b.table = sheenAlbedo().values;
-    b.tableSize = int(table_->width);
+    const SheenAlbedoTable& table = sheenAlbedo();
+    b.table = table.values;
+    b.tableSize = int(table.width);
   }
   try {
     b.program = rt_.program("eval.cl", materialDefines(options_, features) + fmt::format(" -DBRDFCL_W={}", kernelWidth()));

@@ -1,6 +1,7 @@
 // readGBuffer/writeGBuffer: the G-buffer EXR of docs/gbuffer.md. Channel naming (canonical and
 // Blender's multilayer pass names) lives here; the file-level checks (magic, single part, data
 // window, sampling, truncation) are readExrChannels' in image.cpp.
+#include "io/messages.hpp"
 #include "brdfcl/gbuffer.hpp"
 
 #include <ImfChannelList.h>
@@ -22,6 +23,9 @@
 
 namespace brdfcl {
 namespace {
+
+// File names and OpenEXR's messages: longer, with blanks for control characters.
+std::string printable(const std::string& s, std::size_t maxLength = 300) { return detail::printable(s, maxLength, ' '); }
 
 struct Field {
   const char* name;       // canonical prefix ("P") or whole name ("metallic")
@@ -59,18 +63,6 @@ std::vector<std::string> channelNames(const std::string& prefix, const char* suf
 std::string joined(const std::vector<std::string>& names) {
   std::string out;
   for (const auto& n : names) out += (out.empty() ? "" : " ") + n;
-  return out;
-}
-
-std::string printable(const std::string& s, std::size_t maxLength = 300) {
-  std::string out;
-  for (char c : s) {
-    if (out.size() >= maxLength) {
-      out += "...";
-      break;
-    }
-    out += (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) ? ' ' : c;
-  }
   return out;
 }
 

@@ -25,6 +25,7 @@
 #define STB_IMAGE_WRITE_IMPLEMENTATION
 #include <stb/stb_image_write.h>
 
+#include "io/messages.hpp"
 #include "brdfcl/error.hpp"
 #include "brdfcl/image.hpp"
 #include "brdfcl/io.hpp"
@@ -32,18 +33,8 @@
 namespace brdfcl {
 namespace {
 
-// Keeps messages on one line whatever a file name or an OpenEXR message contains.
-std::string printable(const std::string& s, std::size_t maxLength = 300) {
-  std::string out;
-  for (char c : s) {
-    if (out.size() >= maxLength) {
-      out += "...";
-      break;
-    }
-    out += (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) ? ' ' : c;
-  }
-  return out;
-}
+// File names and OpenEXR's messages: longer, with blanks for control characters.
+std::string printable(const std::string& s, std::size_t maxLength = 300) { return detail::printable(s, maxLength, ' '); }
 
 // Guards the allocation below: a corrupt header can claim billions of pixels, and bad_alloc
 // would be an internal error (exit 1) rather than a message about the file.

@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "io/messages.hpp"
 #include "brdfcl/error.hpp"
 #include "brdfcl/io.hpp"
 #include "brdfcl/material.hpp"
@@ -25,6 +26,11 @@ namespace brdfcl {
 namespace {
 
 using json = nlohmann::json;
+using detail::printable;
+using detail::formatNumber;
+std::string describe(const json& v) { return detail::describeJson(v); }
+std::string withoutTag(std::string what) { return detail::withoutJsonTag(std::move(what)); }
+
 using Warn = std::function<void(const std::string&)>;
 
 // POSIX calls because iostreams do not say why opening failed (samples.cpp has its own variant
@@ -58,59 +64,6 @@ int readWholeFile(const std::string& path, std::string& out) {
   ::close(fd);
   out.resize(used);
   return 0;
-}
-
-// Keeps messages on one line whatever a name or string value contains.
-std::string printable(const std::string& s, std::size_t maxLength = 60) {
-  std::string out;
-  for (char c : s) {
-    if (out.size() >= maxLength) {
-      out += "...";
-      break;
-    }
-    out += (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) ? '?' : c;
-  }
-  return out;
-}
-
-std::string formatNumber(double d) {
-  if (std::isnan(d)) return "nan";
-  if (std::isinf(d)) return d > 0 ? "inf" : "-inf";
-  char buf[64];
-  // Whole numbers print as written (12, 10000000000), not as 1e+10.
-  const bool whole = std::floor(d) == d && std::fabs(d) < 1e17;
-  const auto r = whole ? std::to_chars(buf, buf + sizeof buf, d, std::chars_format::fixed)
-                       : std::to_chars(buf, buf + sizeof buf, d);
-  return std::string(buf, r.ptr);
-}
-
-// What the user wrote, for "got ..." in messages.
-std::string describe(const json& v) {
-  switch (v.type()) {
-    case json::value_t::number_float:
-    case json::value_t::number_integer:
-    case json::value_t::number_unsigned:
-      return formatNumber(v.get<double>());
-    case json::value_t::string:
-      return "string \"" + printable(v.get_ref<const std::string&>()) + "\"";
-    case json::value_t::boolean:
-      return v.get<bool>() ? "true" : "false";
-    case json::value_t::null:
-      return "null";
-    case json::value_t::array:
-      return "an array of " + std::to_string(v.size()) + (v.size() == 1 ? " element" : " elements");
-    case json::value_t::object:
-      return "an object";
-    default:
-      return "an unsupported value";
-  }
-}
-
-// Drops nlohmann's "[json.exception.parse_error.101] " tag, which means nothing to a user.
-std::string withoutTag(std::string what) {
-  const auto tag = what.find("] ");
-  if (what.rfind("[json.exception", 0) == 0 && tag != std::string::npos) what.erase(0, tag + 2);
-  return what;
 }
 
 enum class Range { Unit, NonNegative, Finite };

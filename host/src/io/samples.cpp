@@ -25,6 +25,7 @@
 #include <thread>
 #include <vector>
 
+#include "io/messages.hpp"
 #include "brdfcl/error.hpp"
 #include "brdfcl/io.hpp"
 
@@ -33,33 +34,12 @@ static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__, "the NPY reader and wri
 namespace brdfcl {
 namespace {
 
+using detail::printable;
+using detail::formatNumber;
+
 constexpr const char* kColumns[7] = {"material", "Lx", "Ly", "Lz", "Vx", "Vy", "Vz"};
 constexpr const char* kHeaderWithMaterial = "material,Lx,Ly,Lz,Vx,Vy,Vz";
 constexpr const char* kHeaderWithoutMaterial = "Lx,Ly,Lz,Vx,Vy,Vz";
-
-// Keeps messages on one line whatever the file contains.
-std::string printable(std::string_view s, std::size_t maxLength = 60) {
-  std::string out;
-  for (char c : s) {
-    if (out.size() >= maxLength) {
-      out += "...";
-      break;
-    }
-    out += (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) ? '?' : c;
-  }
-  return out;
-}
-
-std::string formatNumber(double d) {
-  if (std::isnan(d)) return "nan";
-  if (std::isinf(d)) return d > 0 ? "inf" : "-inf";
-  char buf[64];
-  // Whole numbers print as written (12, 10000000000), not as 1e+10.
-  const bool whole = std::floor(d) == d && std::fabs(d) < 1e17;
-  const auto r = whole ? std::to_chars(buf, buf + sizeof buf, d, std::chars_format::fixed)
-                       : std::to_chars(buf, buf + sizeof buf, d);
-  return std::string(buf, r.ptr);
-}
 
 bool hasNpyExtension(const std::string& path) {
   if (path.size() < 4) return false;

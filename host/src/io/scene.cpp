@@ -1,6 +1,7 @@
 // readScene/parseScene: the scene JSON of docs/gbuffer.md (camera, KHR_lights_punctual lights
 // with brdfcl's position/direction keys, environment). Every rejection is one line naming the
 // file and the JSON key path, in the style of the materials reader.
+#include "io/messages.hpp"
 #include "brdfcl/scene.hpp"
 
 #include <fcntl.h>
@@ -24,58 +25,14 @@ namespace brdfcl {
 namespace {
 
 using json = nlohmann::json;
+using detail::printable;
+using detail::formatNumber;
+std::string describe(const json& v) { return detail::describeJson(v); }
+std::string withoutTag(std::string what) { return detail::withoutJsonTag(std::move(what)); }
+
 constexpr double kPi = 3.14159265358979323846;
 // Users write pi/2 with a few digits (1.5708); a hair above pi/2 is taken as pi/2.
 constexpr double kHalfPiTolerance = 1e-4;
-
-std::string printable(const std::string& s, std::size_t maxLength = 60) {
-  std::string out;
-  for (char c : s) {
-    if (out.size() >= maxLength) {
-      out += "...";
-      break;
-    }
-    out += (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) ? '?' : c;
-  }
-  return out;
-}
-
-std::string formatNumber(double d) {
-  if (std::isnan(d)) return "nan";
-  if (std::isinf(d)) return d > 0 ? "inf" : "-inf";
-  char buf[64];
-  const bool whole = std::floor(d) == d && std::fabs(d) < 1e17;
-  const auto r = whole ? std::to_chars(buf, buf + sizeof buf, d, std::chars_format::fixed)
-                       : std::to_chars(buf, buf + sizeof buf, d);
-  return std::string(buf, r.ptr);
-}
-
-std::string describe(const json& v) {
-  switch (v.type()) {
-    case json::value_t::number_float:
-    case json::value_t::number_integer:
-    case json::value_t::number_unsigned:
-      return formatNumber(v.get<double>());
-    case json::value_t::string:
-      return "string \"" + printable(v.get_ref<const std::string&>()) + "\"";
-    case json::value_t::boolean:
-      return v.get<bool>() ? "true" : "false";
-    case json::value_t::null:
-      return "null";
-    case json::value_t::array:
-      return "an array of " + std::to_string(v.size()) + (v.size() == 1 ? " element" : " elements");
-    case json::value_t::object:
-      return "an object";
-    default:
-      return "an unsupported value";
-  }
-}
-
-std::string withoutTag(std::string what) {
-  const auto tag = what.find("] ");
-  if (what.rfind("[json.exception", 0) == 0 && tag != std::string::npos) what.erase(0, tag + 2);
-  return what;
-}
 
 using Vec3 = std::array<float, 3>;
 

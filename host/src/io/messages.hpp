@@ -1,0 +1,24 @@
+// Helpers that keep the readers' error messages on one line and quote what the user wrote,
+// shared by every reader of user files (materials, samples, scene, G-buffer, images).
+#pragma once
+#include <cstddef>
+#include <string>
+#include <string_view>
+
+#include <nlohmann/json_fwd.hpp>
+
+namespace brdfcl::detail {
+
+// `s` cut at maxLength (then "...") with control characters replaced, so a message stays one line.
+std::string printable(std::string_view s, std::size_t maxLength = 60, char replacement = '?');
+
+// A number as a user would write it: whole numbers without exponent (12, 10000000000), "nan", "inf".
+std::string formatNumber(double d);
+
+// What a JSON value is, for "got ..." in messages: a number, string "x", true, null, an array of 3 elements.
+std::string describeJson(const nlohmann::json& v);
+
+// nlohmann's parse error without its "[json.exception.parse_error.101] " tag.
+std::string withoutJsonTag(std::string what);
+
+}  // namespace brdfcl::detail
