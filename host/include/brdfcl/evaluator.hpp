@@ -110,6 +110,7 @@ class SoaBatch {
  private:
   Evaluator& ev_;
   std::size_t capacity_ = 0, count_ = 0;
+  std::size_t allocated_ = 0;  // floats a plane holds: capacity padded to whole work-groups
   float* planes_[9] = {};  // Lx Ly Lz Vx Vy Vz r g b, each page-aligned
   std::uint32_t* index_ = nullptr;
   bool inputsChanged_ = true;

@@ -18,6 +18,9 @@ namespace {
 constexpr std::size_t kLanes = SoaBatch::kLanes;
 constexpr std::size_t kMaxChunk = std::size_t(1) << 22;
 constexpr std::size_t kPage = 4096;
+// Work-items per work-group for large batches: measured on PoCL's pthread device (bench/README.md,
+// "Work-group size") against its own choice: +20 % on sheen, +30 % on the layered material.
+constexpr std::size_t kLocalSize = 512;
 
 std::size_t roundUp(std::size_t n, std::size_t m) { return (n + m - 1) / m * m; }
 
@@ -111,6 +114,7 @@ struct SoaBatch::Device {
   Evaluator::Batch batch;
   cl::Buffer planes[9], index;
   cl::Kernel kernel;
+  std::size_t local = 1;  // work-group size used when a launch is large enough
 };
 
 SoaBatch::SoaBatch(Evaluator& evaluator, const std::vector<MaterialParams>& materials, std::size_t capacity)
@@ -120,16 +124,25 @@ SoaBatch::SoaBatch(Evaluator& evaluator, const std::vector<MaterialParams>& mate
   packed_ = device_->batch.packed;
   tableValues_ = device_->batch.table;
   tableSize_ = device_->batch.tableSize;
-  for (auto& p : planes_) p = allocPages<float>(capacity_);
-  index_ = allocPages<std::uint32_t>(capacity_);
+  try {
+    auto& d = *device_;
+    d.kernel = cl::Kernel(d.batch.program, "eval_samples");
+    d.local = std::min(kLocalSize, d.kernel.getWorkGroupInfo<CL_KERNEL_WORK_GROUP_SIZE>(ev_.rt_.device()));
+  } catch (const cl::Error&) {
+    rethrowOpenCL("creating the batch kernel");
+  }
+  // Planes are padded (with zeros: f = 0) to whole work-groups, so a launch rounded up to the
+  // work-group size never reads past them.
+  allocated_ = roundUp(capacity_, kLanes * device_->local);
+  for (auto& p : planes_) p = allocPages<float>(allocated_);
+  index_ = allocPages<std::uint32_t>(allocated_);
   try {
     const auto& ctx = ev_.rt_.context();
     auto& d = *device_;
     for (int k = 0; k < 9; ++k)
       d.planes[k] = cl::Buffer(ctx, (k < 6 ? CL_MEM_READ_ONLY : CL_MEM_WRITE_ONLY) | CL_MEM_USE_HOST_PTR,
-                               capacity_ * 4, planes_[k]);
-    d.index = cl::Buffer(ctx, CL_MEM_READ_ONLY | CL_MEM_USE_HOST_PTR, capacity_ * 4, index_);
-    d.kernel = cl::Kernel(d.batch.program, "eval_samples");
+                               allocated_ * 4, planes_[k]);
+    d.index = cl::Buffer(ctx, CL_MEM_READ_ONLY | CL_MEM_USE_HOST_PTR, allocated_ * 4, index_);
     int arg = 0;
     for (int k = 0; k < 6; ++k) d.kernel.setArg(arg++, d.planes[k]);
     d.kernel.setArg(arg++, d.index);
@@ -176,14 +189,19 @@ void SoaBatch::run() {
       // (a GPU); on a CPU device both calls are free.
       for (int k = 0; k < 7; ++k) {
         cl::Buffer& b = k < 6 ? d.planes[k] : d.index;
-        void* p = q.enqueueMapBuffer(b, CL_TRUE, CL_MAP_WRITE, 0, capacity_ * 4);
+        void* p = q.enqueueMapBuffer(b, CL_TRUE, CL_MAP_WRITE, 0, allocated_ * 4);
         q.enqueueUnmapMemObject(b, p);
       }
       inputsChanged_ = false;
     }
-    q.enqueueNDRangeKernel(d.kernel, cl::NullRange, cl::NDRange(roundUp(count_, kLanes) / std::size_t(kernelWidth())));
+    // Large launches use the measured work-group size (the padding costs at most 1/8); small ones
+    // leave the choice to the runtime rather than evaluate a mostly empty group.
+    std::size_t global = roundUp(count_, kLanes) / std::size_t(kernelWidth());
+    const bool grouped = global >= 8 * d.local && roundUp(global, d.local) * std::size_t(kernelWidth()) <= allocated_;
+    if (grouped) global = roundUp(global, d.local);
+    q.enqueueNDRangeKernel(d.kernel, cl::NullRange, cl::NDRange(global), grouped ? cl::NDRange(d.local) : cl::NullRange);
     for (int k = 6; k < 9; ++k) {
-      void* p = q.enqueueMapBuffer(d.planes[k], CL_TRUE, CL_MAP_READ, 0, capacity_ * 4);
+      void* p = q.enqueueMapBuffer(d.planes[k], CL_TRUE, CL_MAP_READ, 0, allocated_ * 4);
       q.enqueueUnmapMemObject(d.planes[k], p);
     }
     q.finish();
