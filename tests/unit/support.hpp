@@ -1,13 +1,17 @@
 // Test support: one shared OpenCL runtime, seeded random materials and directions in the
 // specs' domain, and a comparison that keeps the worst input for the failure message.
 #pragma once
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <cstdlib>
+#include <functional>
 #include <random>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include "brdfcl/error.hpp"
 #include "brdfcl/evaluator.hpp"
 #include "reference/reference.hpp"
 
@@ -128,4 +132,26 @@ struct WorstCase {
   }
 };
 
+// Runs f, which must throw brdfcl::Error with a one-line message and exit code 2; returns the message.
+inline std::string errorOf(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const Error& e) {
+    EXPECT_EQ(e.exitCode(), 2);
+    const std::string m = e.what();
+    EXPECT_EQ(m.find('\n'), std::string::npos) << m;
+    EXPECT_EQ(m.find('\r'), std::string::npos) << m;
+    return m;
+  } catch (const std::exception& e) {
+    ADD_FAILURE() << "expected brdfcl::Error, got another exception: " << e.what();
+    return {};
+  }
+  ADD_FAILURE() << "expected brdfcl::Error, nothing was thrown";
+  return {};
+}
+
 }  // namespace brdfcl::test
+
+#define EXPECT_CONTAINS(haystack, needle)                          \
+  EXPECT_NE(std::string(haystack).find(needle), std::string::npos) \
+      << "'" << (haystack) << "' lacks '" << (needle) << "'"

@@ -23,6 +23,7 @@
 #include <string>
 #include <vector>
 
+#include "support.hpp"
 #include "brdfcl/error.hpp"
 #include "brdfcl/gbuffer.hpp"
 #include "brdfcl/image.hpp"
@@ -30,6 +31,7 @@
 
 namespace fs = std::filesystem;
 using brdfcl::Error;
+using brdfcl::test::errorOf;
 using brdfcl::GBuffer;
 
 namespace {
@@ -66,25 +68,6 @@ class Gbuffer : public TempDir {};
 class Scene : public TempDir {};
 class Image : public TempDir {};
 
-// f must throw brdfcl::Error with one line and exit code 2; returns the message.
-std::string errorOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    EXPECT_EQ(e.exitCode(), 2);
-    const std::string m = e.what();
-    EXPECT_EQ(m.find('\n'), std::string::npos) << m;
-    return m;
-  } catch (const std::exception& e) {
-    ADD_FAILURE() << "expected brdfcl::Error, got: " << e.what();
-    return {};
-  }
-  ADD_FAILURE() << "expected brdfcl::Error, nothing thrown";
-  return {};
-}
-
-#define EXPECT_CONTAINS(haystack, needle) \
-  EXPECT_NE(std::string(haystack).find(needle), std::string::npos) << "'" << (haystack) << "' lacks '" << (needle) << "'"
 
 std::vector<float> randomVec(std::mt19937& rng, std::size_t n, float lo, float hi) {
   std::uniform_real_distribution<float> u(lo, hi);

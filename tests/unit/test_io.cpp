@@ -20,12 +20,14 @@
 #include <string>
 #include <vector>
 
+#include "support.hpp"
 #include "brdfcl/error.hpp"
 #include "brdfcl/io.hpp"
 #include "brdfcl/material.hpp"
 
 namespace fs = std::filesystem;
 using brdfcl::Error;
+using brdfcl::test::errorOf;
 using brdfcl::MaterialParams;
 using brdfcl::Samples;
 
@@ -64,27 +66,6 @@ class Io : public ::testing::Test {
   fs::path dir_;
 };
 
-// Runs f, which must throw brdfcl::Error with a one-line message and exit code 2; returns the message.
-std::string errorOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    EXPECT_EQ(e.exitCode(), 2);
-    const std::string m = e.what();
-    EXPECT_EQ(m.find('\n'), std::string::npos) << m;
-    EXPECT_EQ(m.find('\r'), std::string::npos) << m;
-    return m;
-  } catch (const std::exception& e) {
-    ADD_FAILURE() << "expected brdfcl::Error, got another exception: " << e.what();
-    return {};
-  }
-  ADD_FAILURE() << "expected brdfcl::Error, nothing was thrown";
-  return {};
-}
-
-#define EXPECT_CONTAINS(haystack, needle)                          \
-  EXPECT_NE(std::string(haystack).find(needle), std::string::npos) \
-      << "'" << (haystack) << "' lacks '" << (needle) << "'"
 
 std::string readFile(const std::string& p) {
   std::ifstream in(p, std::ios::binary);
