@@ -3,7 +3,7 @@
 PRESET ?= release
 JOBS ?= $(shell nproc)
 
-.PHONY: deps configure build test demo bench clean
+.PHONY: deps configure build test test-asan demo bench clean
 
 deps:
 	@scripts/install-deps
@@ -17,6 +17,12 @@ build: configure
 test: build
 	@build/bin/brdfcl-tests --gtest_brief=1
 
+# The host code and tests under AddressSanitizer + UndefinedBehaviorSanitizer (build-asan/).
+test-asan: deps
+	@cmake --preset asan >/dev/null
+	@cmake --build --preset asan -j $(JOBS) --target brdfcl-tests brdfcl
+	@ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 build-asan/bin/brdfcl-tests --gtest_brief=1
+
 demo: build
 	@build/bin/brdfcl demo
 
@@ -25,4 +31,4 @@ bench: build
 	@build/bin/brdfcl-bench --benchmark_out=out/bench.json --benchmark_out_format=json
 
 clean:
-	@rm -rf build
+	@rm -rf build build-asan
