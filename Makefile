@@ -22,7 +22,7 @@ test-asan: deps
 	@cmake --preset asan >/dev/null
 	@cmake --build --preset asan -j $(JOBS) --target brdfcl-tests brdfcl
 	@ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
-	  LSAN_OPTIONS=suppressions=$(CURDIR)/tests/sanitizers/lsan.supp build-asan/bin/brdfcl-tests --gtest_brief=1
+	  LSAN_OPTIONS=suppressions=$(CURDIR)/tests/sanitizers/lsan.supp:print_suppressions=0 build-asan/bin/brdfcl-tests --gtest_brief=1
 
 demo: build
 	@build/bin/brdfcl demo
