@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "io/files.hpp"
 #include "io/messages.hpp"
 #include "brdfcl/error.hpp"
 #include "brdfcl/io.hpp"
@@ -32,39 +33,6 @@ std::string describe(const json& v) { return detail::describeJson(v); }
 std::string withoutTag(std::string what) { return detail::withoutJsonTag(std::move(what)); }
 
 using Warn = std::function<void(const std::string&)>;
-
-// POSIX calls because iostreams do not say why opening failed (samples.cpp has its own variant
-// that maps large files). Returns 0 or an errno value.
-int readWholeFile(const std::string& path, std::string& out) {
-  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-  if (fd < 0) return errno;
-  struct stat st {};
-  if (::fstat(fd, &st) != 0 || S_ISDIR(st.st_mode)) {
-    const int err = S_ISDIR(st.st_mode) ? EISDIR : errno;
-    ::close(fd);
-    return err;
-  }
-  out.clear();
-  // st_size is only a hint: pipes and /proc files report 0, so keep reading until EOF.
-  std::size_t capacity = S_ISREG(st.st_mode) && st.st_size > 0 ? static_cast<std::size_t>(st.st_size) + 1 : 65536;
-  out.resize(capacity);
-  std::size_t used = 0;
-  for (;;) {
-    if (used == out.size()) out.resize(out.size() * 2);
-    const ssize_t n = ::read(fd, &out[used], out.size() - used);
-    if (n < 0) {
-      if (errno == EINTR) continue;
-      const int err = errno;
-      ::close(fd);
-      return err;
-    }
-    if (n == 0) break;
-    used += static_cast<std::size_t>(n);
-  }
-  ::close(fd);
-  out.resize(used);
-  return 0;
-}
 
 enum class Range { Unit, NonNegative, Finite };
 
@@ -279,7 +247,7 @@ std::vector<MaterialParams> parseMaterials(const std::string& jsonText, const st
 
 std::vector<MaterialParams> readMaterials(const std::string& path, const Warn& warn) {
   std::string text;
-  if (const int err = readWholeFile(path, text))
+  if (const int err = detail::readWholeFile(path, text))
     throw Error("cannot read materials file '" + printable(path, 300) + "': " + std::strerror(err));
   return parseMaterials(text, path, warn);
 }

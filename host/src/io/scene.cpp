@@ -1,6 +1,7 @@
 // readScene/parseScene: the scene JSON of docs/gbuffer.md (camera, KHR_lights_punctual lights
 // with brdfcl's position/direction keys, environment). Every rejection is one line naming the
 // file and the JSON key path, in the style of the materials reader.
+#include "io/files.hpp"
 #include "io/messages.hpp"
 #include "brdfcl/scene.hpp"
 
@@ -258,28 +259,8 @@ Scene parseScene(const std::string& jsonText, const std::string& sourceName, con
 
 Scene readScene(const std::string& path) {
   const std::string shown = printable(path, 300);
-  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-  if (fd < 0) throw Error("cannot read '" + shown + "': " + std::strerror(errno));
-  struct stat st {};
-  if (::fstat(fd, &st) != 0 || S_ISDIR(st.st_mode)) {
-    const int err = S_ISDIR(st.st_mode) ? EISDIR : errno;
-    ::close(fd);
-    throw Error("cannot read '" + shown + "': " + std::strerror(err));
-  }
   std::string text;
-  char buf[65536];
-  for (;;) {
-    const ssize_t n = ::read(fd, buf, sizeof buf);
-    if (n < 0 && errno == EINTR) continue;
-    if (n < 0) {
-      const int err = errno;
-      ::close(fd);
-      throw Error("cannot read '" + shown + "': " + std::strerror(err));
-    }
-    if (n == 0) break;
-    text.append(buf, static_cast<std::size_t>(n));
-  }
-  ::close(fd);
+  if (const int err = detail::readWholeFile(path, text)) throw Error("cannot read '" + shown + "': " + std::strerror(err));
   return parseScene(text, path, std::filesystem::path(path).parent_path().string());
 }
 
