@@ -1,9 +1,12 @@
 // `brdfcl eval`: materials JSON + samples CSV/NPY -> f(L, V) per sample (or per material x
-// direction with --grid), written atomically as CSV/NPY.
+// direction with --grid), streamed in chunks of --chunk samples and written atomically as CSV/NPY.
 #include <cstdio>
+#include <string>
 
+#include "brdfcl/error.hpp"
 #include "brdfcl/evaluator.hpp"
 #include "brdfcl/io.hpp"
+#include "brdfcl/stream.hpp"
 #include "commands.hpp"
 
 namespace brdfcl::cli {
@@ -13,6 +16,7 @@ struct EvalArgs {
   std::string materials, samples, out, device;
   std::string visibility = "charlie", distribution = "charlie", scaling = "min", lobe = "all";
   bool grid = false;
+  long long chunk = static_cast<long long>(StreamOptions::kDefaultChunk);
 };
 }  // namespace
 
@@ -28,6 +32,9 @@ void addEvalCommand(CLI::App& app) {
   cmd->add_option("--sheen-scaling", args->scaling, "min|view|none (default min)");
   cmd->add_option("--lobe", args->lobe, "all|diffuse|specular|sheen|clearcoat (default all)");
   cmd->add_flag("--grid", args->grid, "every material x every direction pair, material-major");
+  cmd->add_option("--chunk", args->chunk,
+                  "samples per chunk (default " + std::to_string(StreamOptions::kDefaultChunk) +
+                      "); memory stays bounded by a few chunks whatever the file size");
   cmd->add_option("--device", args->device, "device index or name substring (default $BRDFCL_DEVICE, then 0)");
   cmd->callback([args] {
     EvalOptions o;
@@ -38,11 +45,19 @@ void addEvalCommand(CLI::App& app) {
     auto materials = readMaterials(args->materials, [](const std::string& w) {
       std::fprintf(stderr, "brdfcl: warning: %s\n", w.c_str());
     });
-    auto samples = readSamples(args->samples, args->grid ? 0 : materials.size(), args->grid);
+    if (args->chunk < 1 || args->chunk > static_cast<long long>(StreamOptions::kMaxChunk))
+      throw Error("--chunk " + std::to_string(args->chunk) + " is out of range; use 1 to " +
+                  std::to_string(StreamOptions::kMaxChunk));
+    // The header is checked before the device is set up; rows are checked as they stream.
+    SampleStream samples(args->samples, args->grid ? 0 : materials.size(), args->grid);
     Runtime rt(args->device);
     Evaluator evaluator(rt, o);
-    auto rgb = args->grid ? evaluator.evaluateGrid(materials, samples) : evaluator.evaluate(materials, samples);
-    writeResults(args->out, rgb);
+    ResultWriter out(args->out);
+    StreamOptions so;
+    so.chunk = static_cast<std::size_t>(args->chunk);
+    so.grid = args->grid;
+    evaluateStream(evaluator, materials, samples, out, so);
+    out.commit();
   });
 }
 

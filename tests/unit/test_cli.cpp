@@ -30,9 +30,8 @@
 #include <thread>
 #include <vector>
 
+#include "process.hpp"
 #include "support.hpp"
-
-extern char** environ;
 
 namespace fs = std::filesystem;
 using namespace brdfcl;
@@ -42,27 +41,7 @@ namespace {
 // ---------------------------------------------------------------------------------------------
 // Running the binary
 
-struct RunResult {
-  int status = -1;  // exit code, or 128 + signal
-  std::string out, err;
-
-  // stderr without warnings: the error contract allows warnings before the one error line.
-  std::vector<std::string> errorLines() const {
-    std::vector<std::string> lines;
-    std::istringstream in(err);
-    for (std::string l; std::getline(in, l);)
-      if (l.rfind("brdfcl: warning:", 0) != 0) lines.push_back(l);
-    return lines;
-  }
-  std::vector<std::string> warningLines() const {
-    std::vector<std::string> lines;
-    std::istringstream in(err);
-    for (std::string l; std::getline(in, l);)
-      if (l.rfind("brdfcl: warning:", 0) == 0) lines.push_back(l);
-    return lines;
-  }
-  std::string describe() const { return "exit " + std::to_string(status) + ", stderr:\n" + err + "stdout:\n" + out; }
-};
+using brdfcl::test::RunResult;
 
 std::string readFile(const fs::path& p) {
   std::ifstream in(p, std::ios::binary);
@@ -368,43 +347,9 @@ class Cli : public ::testing::Test {
   }
 
   RunResult run(const std::vector<std::string>& args, const std::string& cwd = "") const {
-    const std::string outPath = (root_ / "stdout").string(), errPath = (root_ / "stderr").string();
-    std::vector<std::string> argStrings{BRDFCL_CLI_PATH};
-    argStrings.insert(argStrings.end(), args.begin(), args.end());
-    std::vector<char*> argv;
-    for (auto& a : argStrings) argv.push_back(a.data());
-    argv.push_back(nullptr);
-
-    posix_spawn_file_actions_t fa;
-    posix_spawn_file_actions_init(&fa);
-    posix_spawn_file_actions_addopen(&fa, 0, "/dev/null", O_RDONLY, 0);
-    posix_spawn_file_actions_addopen(&fa, 1, outPath.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    posix_spawn_file_actions_addopen(&fa, 2, errPath.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    if (!cwd.empty()) posix_spawn_file_actions_addchdir_np(&fa, cwd.c_str());
-    pid_t pid = -1;
-    const int rc = posix_spawn(&pid, argv[0], &fa, nullptr, argv.data(), environ);
-    posix_spawn_file_actions_destroy(&fa);
-    if (rc != 0) throw std::runtime_error(std::string("posix_spawn ") + argv[0] + ": " + std::strerror(rc));
-
-    // A hung CLI must fail the test, not the whole run.
-    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
-    int status = 0;
-    for (;;) {
-      const pid_t w = ::waitpid(pid, &status, WNOHANG);
-      if (w == pid) break;
-      if (w < 0 && errno != EINTR) throw std::runtime_error(std::string("waitpid: ") + std::strerror(errno));
-      if (std::chrono::steady_clock::now() > deadline) {
-        ::kill(pid, SIGKILL);
-        ::waitpid(pid, &status, 0);
-        throw std::runtime_error("brdfcl did not finish within 120 s");
-      }
-      std::this_thread::sleep_for(std::chrono::milliseconds(2));
-    }
-    RunResult r;
-    r.status = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-    r.out = readFile(outPath);
-    r.err = readFile(errPath);
-    return r;
+    std::vector<std::string> argv{BRDFCL_CLI_PATH};
+    argv.insert(argv.end(), args.begin(), args.end());
+    return brdfcl::test::runProcess(argv, root_.string(), cwd);
   }
 
   RunResult eval(const std::string& materials, const std::string& samples, const std::string& out,

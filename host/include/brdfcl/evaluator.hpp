@@ -58,9 +58,18 @@ class Evaluator {
 
   // Every material x every direction pair, material-major. samples.material is ignored.
   std::vector<float> evaluateGrid(const std::vector<MaterialParams>& materials, const Samples& samples);
+  // Only the rows of materials [firstMaterial, firstMaterial + materialCount), bit-identical to
+  // those rows of the whole grid. (The kernel is specialized for the layers `materials` use, so
+  // evaluating a sub-list instead may differ in the last bit.)
+  std::vector<float> evaluateGrid(const std::vector<MaterialParams>& materials, const Samples& samples,
+                                  std::size_t firstMaterial, std::size_t materialCount);
 
   // The table this evaluator's sheen options use (baked on first use).
   const SheenAlbedoTable& sheenAlbedo();
+
+  // Samples one kernel launch takes at most: a fixed bound, lowered to fit every plane in the
+  // device's largest allocation. Larger batches are split into launches of this size.
+  std::size_t launchLimit() const;
 
  private:
   friend class SoaBatch;
@@ -106,6 +115,11 @@ class SoaBatch {
   int sheenAlbedoSize() const { return tableSize_; }
 
   void run();
+
+  // Evaluates `samples` (any count; capacity() at a time) into rgb, 3 floats a sample: what
+  // Evaluator::evaluate does, on this batch's buffers, so a stream of chunks allocates once.
+  // Throws Error if a material index is out of range.
+  void evaluate(const Samples& samples, float* rgb);
 
  private:
   Evaluator& ev_;

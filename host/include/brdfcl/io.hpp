@@ -4,6 +4,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -39,10 +40,56 @@ struct Samples {
 // (0-based rows, as numpy indexes them). Large files are parsed on several threads.
 Samples readSamples(const std::string& path, std::size_t materialCount, bool materialColumnOptional);
 
+// The same files read a chunk at a time, so a file of any size takes bounded memory: the chunk's
+// rows plus one read buffer. Checks, normalization and messages (line and row numbers included)
+// are exactly readSamples's, which is this stream read in one chunk. The header is read and
+// checked by the constructor. Regular files are read with pread and never mapped, so the page
+// cache is not charged to the process; pipes are read whole first (NPY needs to seek).
+// Not thread-safe: one thread reads a stream (it parses each chunk on several threads itself).
+class SampleStream {
+ public:
+  SampleStream(const std::string& path, std::size_t materialCount, bool materialColumnOptional);
+  ~SampleStream();
+  SampleStream(const SampleStream&) = delete;
+  SampleStream& operator=(const SampleStream&) = delete;
+
+  bool hasMaterialColumn() const;
+  // Replaces `out` with the next 1..maxRows rows (fewer only at the end of a CSV chunk of
+  // blank lines or of the file); false, with `out` empty, once the file is exhausted. Throws the
+  // reader's Error for the first bad row, and "no samples" if the file holds none at all.
+  bool next(std::size_t maxRows, Samples& out);
+  // Starts again from the first row (the grid re-reads directions once per material).
+  void rewind();
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
 // Writes N rows of r,g,b: CSV with header and 9 significant digits (%.9g), or float32 .npy
 // (N,3) v1.0, chosen by extension. Writes a temporary file beside `path`, then renames it into
 // place. rgb.size() must be a multiple of 3 (std::invalid_argument otherwise: a caller bug).
 void writeResults(const std::string& path, const std::vector<float>& rgb);
+
+// writeResults a chunk at a time: rows go to a temporary file beside `path` as they come, and
+// commit() renames it into place (for .npy after writing the final row count into the header,
+// whose length is fixed at 128 bytes). Destroyed without commit(), e.g. by an exception, it
+// removes the temporary: no half-written output. The bytes equal writeResults's of all rows.
+class ResultWriter {
+ public:
+  explicit ResultWriter(const std::string& path);
+  ~ResultWriter();
+  ResultWriter(const ResultWriter&) = delete;
+  ResultWriter& operator=(const ResultWriter&) = delete;
+
+  void append(const float* rgb, std::size_t rows);  // 3 floats a row
+  std::size_t rows() const;
+  void commit();
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
 
 // Runs `write` on a temporary path beside `path` (".<name>.tmp.<pid>.<n>", already created
 // empty) and renames it into place on success; on any exception the temporary is removed and

@@ -210,25 +210,33 @@ void SoaBatch::run() {
   }
 }
 
+std::size_t Evaluator::launchLimit() const { return chunkSize(rt_, 4); }
+
 std::vector<float> Evaluator::evaluate(const std::vector<MaterialParams>& materials, const Samples& samples) {
+  const std::size_t n = samples.size();
+  std::vector<float> rgb(3 * n);
+  if (n == 0) return rgb;
+  SoaBatch batch(*this, materials, std::min(roundUp(n, kLanes), launchLimit()));
+  batch.evaluate(samples, rgb.data());
+  return rgb;
+}
+
+void SoaBatch::evaluate(const Samples& samples, float* rgb) {
   const std::size_t n = samples.size();
   if (samples.material.size() != n)
     throw Error(fmt::format("internal: {} material indices for {} samples", samples.material.size(), n), 3);
   for (std::size_t i = 0; i < n; ++i)
-    if (samples.material[i] >= materials.size())
+    if (samples.material[i] >= packed_.size())
       throw Error(fmt::format("sample {}: material index {} out of range ({} materials)", i, samples.material[i],
-                              materials.size()));
-  std::vector<float> rgb(3 * n);
-  if (n == 0) return rgb;
-
-  SoaBatch batch(*this, materials, std::min(roundUp(n, kLanes), chunkSize(rt_, 4)));
-  const std::size_t chunk = batch.capacity();
+                              packed_.size()));
+  const std::size_t chunk = capacity();
   for (std::size_t first = 0; first < n; first += chunk) {
     const std::size_t count = std::min(chunk, n - first);
     float* planes[6];
-    for (int k = 0; k < 6; ++k) planes[k] = batch.direction(k);
-    std::uint32_t* index = batch.materialIndex();
-    if (count < chunk) {  // the last, partial chunk: clear what the previous one left behind
+    for (int k = 0; k < 6; ++k) planes[k] = direction(k);
+    std::uint32_t* index = materialIndex();
+    // Clear what a previous, longer run left behind past `count` (padding lanes give f = 0).
+    if (count < chunk) {
       for (auto* p : planes) std::fill(p + count, p + chunk, 0.0f);
       std::fill(index + count, index + chunk, 0u);
     }
@@ -239,18 +247,25 @@ std::vector<float> Evaluator::evaluate(const std::vector<MaterialParams>& materi
       }
       index[i] = samples.material[first + i];
     }
-    batch.setCount(count);
-    batch.run();
+    setCount(count);
+    run();
     for (int c = 0; c < 3; ++c) {
-      const float* plane = batch.result(c);
+      const float* plane = result(c);
       for (std::size_t i = 0; i < count; ++i) rgb[3 * (first + i) + c] = plane[i];
     }
   }
-  return rgb;
 }
 
 std::vector<float> Evaluator::evaluateGrid(const std::vector<MaterialParams>& materials, const Samples& samples) {
-  const std::size_t n = samples.size(), nm = materials.size();
+  return evaluateGrid(materials, samples, 0, materials.size());
+}
+
+std::vector<float> Evaluator::evaluateGrid(const std::vector<MaterialParams>& materials, const Samples& samples,
+                                           std::size_t firstMaterial, std::size_t materialCount) {
+  if (firstMaterial > materials.size() || materialCount > materials.size() - firstMaterial)
+    throw Error(fmt::format("internal: materials [{}, {}) of {}", firstMaterial, firstMaterial + materialCount,
+                            materials.size()), 3);
+  const std::size_t n = samples.size(), nm = materialCount;
   std::vector<float> rgb(3 * n * nm);
   if (n == 0 || nm == 0) return rgb;
 
@@ -276,7 +291,7 @@ std::vector<float> Evaluator::evaluateGrid(const std::vector<MaterialParams>& ma
       for (std::size_t m0 = 0; m0 < nm; m0 += materialsPerLaunch) {
         const std::size_t mc = std::min(materialsPerLaunch, nm - m0);
         kernel(cl::EnqueueArgs(q, cl::NDRange(stride / std::size_t(kernelWidth()), mc)), bDirs, cl_uint(stride), b.materials,
-               cl_uint(m0), b.tableBuffer, b.tableSize, bOut);
+               cl_uint(firstMaterial + m0), b.tableBuffer, b.tableSize, bOut);
         const std::size_t plane = stride * mc;
         q.enqueueReadBuffer(bOut, CL_TRUE, 0, 3 * plane * 4, out.data());
         for (std::size_t m = 0; m < mc; ++m)

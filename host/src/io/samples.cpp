@@ -1,13 +1,11 @@
-// Sample input (CSV or .npy: material, L, V per row) and result output (r,g,b as CSV or .npy),
-// plus writeAtomically, which every output goes through so a failed run never leaves a partial file.
-// Files may hold millions of rows: mapped input, parallel from_chars/to_chars, no per-row allocation.
+// Sample input: CSV or .npy rows of material, L, V, read whole (readSamples) or a chunk at a time
+// (SampleStream) with the same checks and messages. Regular files are read with pread into one
+// reusable buffer, never mapped; each chunk is parsed on several threads, without per-row allocation.
 #include <fcntl.h>
-#include <sys/mman.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
-#include <atomic>
 #include <cctype>
 #include <cerrno>
 #include <charconv>
@@ -15,100 +13,101 @@
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
-#include <exception>
-#include <filesystem>
-#include <functional>
-#include <stdexcept>
+#include <limits>
+#include <memory>
 #include <string>
 #include <string_view>
-#include <system_error>
-#include <thread>
 #include <vector>
 
-#include "io/messages.hpp"
 #include "brdfcl/error.hpp"
 #include "brdfcl/io.hpp"
+#include "io/messages.hpp"
+#include "io/rows.hpp"
 
-static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__, "the NPY reader and writer copy little-endian data as-is");
+static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__, "the NPY reader copies little-endian data as-is");
 
 namespace brdfcl {
 namespace {
 
-using detail::printable;
 using detail::formatNumber;
+using detail::parallelFor;
+using detail::printable;
+using detail::workerCount;
 
 constexpr const char* kColumns[7] = {"material", "Lx", "Ly", "Lz", "Vx", "Vy", "Vz"};
 constexpr const char* kHeaderWithMaterial = "material,Lx,Ly,Lz,Vx,Vy,Vz";
 constexpr const char* kHeaderWithoutMaterial = "Lx,Ly,Lz,Vx,Vy,Vz";
 
-bool hasNpyExtension(const std::string& path) {
-  if (path.size() < 4) return false;
-  std::string ext = path.substr(path.size() - 4);
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-  return ext == ".npy";
-}
-
-// The whole input file. Large regular files are mapped rather than read: copying (and first
-// zero-filling) a buffer of the file's size costs as much as parsing a third of it.
-class InputFile {
+// The bytes of the samples file. A regular file is read on demand with pread, so memory stays
+// bounded by what the caller asks for; pipes and /proc files (st_size 0, no seeking) are read
+// whole at once, as a one-shot reader would have to anyway.
+class Source {
  public:
-  explicit InputFile(const std::string& path) {
-    const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-    if (fd < 0) fail(path, errno);
+  explicit Source(const std::string& path) : name_(printable(path, 300)) {
+    fd_ = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+    if (fd_ < 0) fail(errno);
+    // The destructor does not run when the constructor throws: close before failing.
+    const auto failOpen = [this](int err) {
+      ::close(fd_);
+      fd_ = -1;
+      fail(err);
+    };
     struct stat st {};
-    if (::fstat(fd, &st) != 0 || S_ISDIR(st.st_mode)) {
-      const int err = S_ISDIR(st.st_mode) ? EISDIR : errno;
-      ::close(fd);
-      fail(path, err);
+    if (::fstat(fd_, &st) != 0 || S_ISDIR(st.st_mode)) failOpen(S_ISDIR(st.st_mode) ? EISDIR : errno);
+    if (S_ISREG(st.st_mode) && st.st_size > 0) {
+      size_ = static_cast<std::size_t>(st.st_size);
+      return;
     }
-    if (S_ISREG(st.st_mode) && st.st_size >= (1 << 20)) {
-      const std::size_t size = static_cast<std::size_t>(st.st_size);
-      void* p = ::mmap(nullptr, size, PROT_READ, MAP_PRIVATE | MAP_POPULATE, fd, 0);
-      if (p != MAP_FAILED) {
-        ::close(fd);
-        map_ = p;
-        data_ = static_cast<const char*>(p);
-        size_ = size;
-        return;
-      }
-    }
-    // Small files, pipes and /proc files (whose st_size is 0): read until EOF.
-    buffer_.resize(S_ISREG(st.st_mode) && st.st_size > 0 ? static_cast<std::size_t>(st.st_size) + 1 : 65536);
     std::size_t used = 0;
+    whole_.resize(65536);
     for (;;) {
-      if (used == buffer_.size()) buffer_.resize(buffer_.size() * 2);
-      const ssize_t n = ::read(fd, &buffer_[used], buffer_.size() - used);
+      if (used == whole_.size()) whole_.resize(whole_.size() * 2);
+      const ssize_t n = ::read(fd_, &whole_[used], whole_.size() - used);
       if (n < 0 && errno == EINTR) continue;
-      if (n < 0) {
-        const int err = errno;
-        ::close(fd);
-        fail(path, err);
-      }
+      if (n < 0) failOpen(errno);
       if (n == 0) break;
       used += static_cast<std::size_t>(n);
     }
-    ::close(fd);
-    buffer_.resize(used);
-    data_ = buffer_.data();
+    whole_.resize(used);
     size_ = used;
+    ::close(fd_);
+    fd_ = -1;
   }
-  ~InputFile() {
-    if (map_) ::munmap(map_, size_);
+  ~Source() {
+    if (fd_ >= 0) ::close(fd_);
   }
-  InputFile(const InputFile&) = delete;
-  InputFile& operator=(const InputFile&) = delete;
+  Source(const Source&) = delete;
+  Source& operator=(const Source&) = delete;
 
-  const char* data() const { return data_; }
   std::size_t size() const { return size_; }
 
- private:
-  [[noreturn]] static void fail(const std::string& path, int err) {
-    throw Error("cannot read samples file '" + printable(path, 300) + "': " + std::strerror(err));
+  // Copies up to n bytes from `offset`; fewer only at the end of the file.
+  std::size_t readAt(std::size_t offset, char* dst, std::size_t n) const {
+    if (fd_ < 0) {
+      if (offset >= whole_.size()) return 0;
+      n = std::min(n, whole_.size() - offset);
+      std::memcpy(dst, whole_.data() + offset, n);
+      return n;
+    }
+    std::size_t done = 0;
+    while (done < n) {
+      const ssize_t r = ::pread(fd_, dst + done, n - done, static_cast<off_t>(offset + done));
+      if (r < 0 && errno == EINTR) continue;
+      if (r < 0) fail(errno);
+      if (r == 0) break;
+      done += static_cast<std::size_t>(r);
+    }
+    return done;
   }
 
-  void* map_ = nullptr;
-  std::string buffer_;
-  const char* data_ = nullptr;
+ private:
+  [[noreturn]] void fail(int err) const {
+    throw Error("cannot read samples file '" + name_ + "': " + std::strerror(err));
+  }
+
+  std::string name_;
+  int fd_ = -1;
+  std::string whole_;
   std::size_t size_ = 0;
 };
 
@@ -167,52 +166,23 @@ class RowChecker {
   Samples& out_;
 };
 
-Samples allocateSamples(std::size_t rows, bool hasMaterial) {
-  Samples s;
-  if (hasMaterial) s.material.resize(rows);
-  s.L.resize(3 * rows);
-  s.V.resize(3 * rows);
-  return s;
+// Sizes `out` for `rows` rows; vectors keep their capacity, so a stream's chunks reuse memory.
+void allocateSamples(std::size_t rows, bool hasMaterial, Samples& out) {
+  out.material.resize(hasMaterial ? rows : 0);
+  out.L.resize(3 * rows);
+  out.V.resize(3 * rows);
 }
 
-// ---------------------------------------------------------------------------------------------
-// Parallel parsing and formatting: number conversion dominates, and rows are independent.
-
-std::size_t workerCount(std::size_t bytes) {
-  const std::size_t cores = std::max(1u, std::thread::hardware_concurrency());
-  return std::min<std::size_t>({cores, 64, bytes / (1u << 20) + 1});  // >= 1 MiB per worker
-}
-
-// Runs body(0..n-1) concurrently, the calling thread taking part; rethrows the first exception.
-void parallelFor(std::size_t n, const std::function<void(std::size_t)>& body) {
-  std::vector<std::exception_ptr> errors(n);
-  const auto run = [&](std::size_t i) {
-    try {
-      body(i);
-    } catch (...) {
-      errors[i] = std::current_exception();
-    }
-  };
-  std::vector<std::thread> threads;
-  std::size_t next = 1;
-  for (; next < n; ++next) {
-    try {
-      threads.emplace_back(run, next);
-    } catch (const std::system_error&) {
-      break;  // no more threads available: the rest runs here
-    }
-  }
-  if (n > 0) run(0);
-  for (; next < n; ++next) run(next);
-  for (auto& t : threads) t.join();
-  for (auto& e : errors)
-    if (e) std::rethrow_exception(e);
+void shrinkSamples(std::size_t rows, Samples& out) {
+  if (!out.material.empty()) out.material.resize(rows);
+  out.L.resize(3 * rows);
+  out.V.resize(3 * rows);
 }
 
 // The first problem one worker met in its share of the rows.
 struct ChunkError {
   std::string message;  // without the "file:line: " prefix; empty if the chunk was fine
-  std::size_t at = 0;   // line (CSV) or row (NPY), relative to the chunk
+  std::size_t at = 0;   // line (CSV) or row (NPY), relative to the worker's share
 };
 
 // ---------------------------------------------------------------------------------------------
@@ -287,9 +257,14 @@ struct CsvLayout {
   const char* header;
 };
 
-// Parses the lines in [p, end) into rows firstRow.. of the output. `fileEnd` tells trailing
-// blank lines (ignored) from blank lines followed by more data (an error). Returns the rows parsed.
-std::size_t parseCsvChunk(const char* p, const char* end, const char* fileEnd, const CsvLayout& layout,
+std::string emptyLineMessage(const CsvLayout& layout) {
+  return "empty line; expected " + std::to_string(layout.fields) + " fields (" + layout.header + ")";
+}
+
+// Parses the lines in [p, end) into rows firstRow.. of the output. A blank line is fine only if
+// nothing but blank lines follows it up to `chunkEnd`; the stream decides about the lines after
+// the chunk. Returns the rows parsed (the lines before any trailing blank ones).
+std::size_t parseCsvLines(const char* p, const char* end, const char* chunkEnd, const CsvLayout& layout,
                           const RowChecker& checker, std::size_t firstRow, ChunkError& error) {
   std::string_view fields[7];
   double values[7];
@@ -305,8 +280,8 @@ std::size_t parseCsvChunk(const char* p, const char* end, const char* fileEnd, c
     p = nl ? nl + 1 : end;
     if (!text.empty() && text.back() == '\r') text.remove_suffix(1);
     if (trim(text).empty()) {
-      if (allBlank(p, fileEnd)) return line;
-      return fail("empty line; expected " + std::to_string(layout.fields) + " fields (" + layout.header + ")");
+      if (allBlank(p, chunkEnd)) return line;
+      return fail(emptyLineMessage(layout));
     }
     if (!splitFields(text, fields, layout.fields))
       return fail("expected " + std::to_string(layout.fields) + " fields (" + layout.header + "), got " +
@@ -324,82 +299,190 @@ std::size_t parseCsvChunk(const char* p, const char* end, const char* fileEnd, c
   return line;
 }
 
-Samples readCsv(const char* begin, const char* const fileEnd, const std::string& name, std::size_t materialCount,
-                bool optional) {
-  if (fileEnd - begin >= 3 && std::memcmp(begin, "\xEF\xBB\xBF", 3) == 0) begin += 3;  // spreadsheets add a BOM
-
-  const std::string expectedHeader = std::string("'") + kHeaderWithMaterial + "'" +
-                                     (optional ? std::string(" or '") + kHeaderWithoutMaterial + "'" : "");
-  if (allBlank(begin, fileEnd)) throw Error(name + ": empty file; expected the header " + expectedHeader);
-  const char* nl = findNewline(begin, fileEnd);
-  std::string_view line(begin, static_cast<std::size_t>((nl ? nl : fileEnd) - begin));
-  if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
-  const char* const body = nl ? nl + 1 : fileEnd;
-
-  // R's write.csv and some spreadsheets quote the column names, never the numbers.
-  const auto nameIs = [](std::string_view field, const char* expected) {
-    field = trim(field);
-    if (field.size() >= 2 && field.front() == '"' && field.back() == '"') field = field.substr(1, field.size() - 2);
-    return field == expected;
-  };
-  std::string_view header[7];
-  bool hasMaterial = false;
-  bool headerOk = false;
-  if (splitFields(line, header, 7)) {
-    headerOk = true;
-    for (int k = 0; k < 7; ++k) headerOk = headerOk && nameIs(header[k], kColumns[k]);
-    hasMaterial = true;
-  } else if (optional && splitFields(line, header, 6)) {
-    headerOk = true;
-    for (int k = 0; k < 6; ++k) headerOk = headerOk && nameIs(header[k], kColumns[k + 1]);
+// CSV a chunk of lines at a time. The buffer holds the lines not yet parsed; each chunk is cut
+// after a newline, so every line is parsed exactly once, and line numbers run on across chunks.
+class CsvReader {
+ public:
+  CsvReader(const Source& src, std::string name, std::size_t materialCount, bool optional)
+      : src_(src), name_(std::move(name)), materialCount_(materialCount) {
+    readHeader(optional);
   }
-  if (!headerOk) {
-    const std::size_t comma = line.find(',');
-    double ignored;
-    const bool looksLikeData =
-        parseDouble(line.substr(0, comma == std::string_view::npos ? line.size() : comma), ignored);
-    throw Error(name + ":1: " + (looksLikeData ? "missing header" : "bad header '" + printable(line) + "'") +
-                "; the first line must be " + expectedHeader);
-  }
-  const CsvLayout layout{hasMaterial ? 7 : 6, hasMaterial ? kColumns : kColumns + 1,
-                         hasMaterial ? kHeaderWithMaterial : kHeaderWithoutMaterial};
 
-  // Chunks start after a '\n', so every line belongs to exactly one chunk.
-  const std::size_t workers = workerCount(static_cast<std::size_t>(fileEnd - body));
-  std::vector<const char*> bounds(workers + 1, fileEnd);
-  bounds[0] = body;
-  for (std::size_t w = 1; w < workers; ++w) {
-    const char* guess = std::max(
-        bounds[w - 1], body + (fileEnd - body) / static_cast<std::ptrdiff_t>(workers) * static_cast<std::ptrdiff_t>(w));
-    const char* cut = findNewline(guess, fileEnd);
-    bounds[w] = cut ? cut + 1 : fileEnd;
-  }
-  // Counting lines first lets every worker write straight into the one output.
-  std::vector<std::size_t> firstRow(workers + 1, 0);
-  parallelFor(workers, [&](std::size_t w) { firstRow[w + 1] = countLines(bounds[w], bounds[w + 1]); });
-  for (std::size_t w = 0; w < workers; ++w) firstRow[w + 1] += firstRow[w];
+  bool hasMaterial() const { return layout_.fields == 7; }
 
-  Samples out = allocateSamples(firstRow[workers], hasMaterial);
-  const RowChecker checker(materialCount, hasMaterial, out);
-  std::vector<ChunkError> errors(workers);
-  std::vector<std::size_t> parsed(workers);
-  parallelFor(workers, [&](std::size_t w) {
-    parsed[w] = parseCsvChunk(bounds[w], bounds[w + 1], fileEnd, layout, checker, firstRow[w], errors[w]);
-  });
-  for (std::size_t w = 0; w < workers; ++w) {
-    if (errors[w].message.empty()) continue;
-    // Header is line 1; the body starts at line 2.
-    throw Error(name + ":" + std::to_string(2 + firstRow[w] + errors[w].at) + ": " + errors[w].message);
+  bool next(std::size_t maxRows, Samples& out) {
+    for (;;) {
+      const std::size_t cut = fill(maxRows);
+      if (cut == begin_) {
+        if (rows_ == 0) throw Error(name_ + ": no samples (the file has a header but no rows)");
+        shrinkSamples(0, out);
+        return false;
+      }
+      const std::size_t rows = parse(buf_.data() + begin_, buf_.data() + cut, out);
+      begin_ = cut;
+      if (rows > 0) return true;
+    }
   }
-  // Only trailing blank lines are skipped, so the parsed rows form a prefix of the output.
-  std::size_t rows = 0;
-  for (std::size_t w = 0; w < workers && rows == firstRow[w]; ++w) rows += parsed[w];
-  if (rows == 0) throw Error(name + ": no samples (the file has a header but no rows)");
-  if (hasMaterial) out.material.resize(rows);
-  out.L.resize(3 * rows);
-  out.V.resize(3 * rows);
-  return out;
-}
+
+  void rewind() {
+    offset_ = bodyOffset_;
+    begin_ = end_ = 0;
+    eof_ = false;
+    line_ = 2;
+    rows_ = 0;
+    pendingBlank_ = 0;
+  }
+
+ private:
+  static constexpr std::size_t kBlock = std::size_t(4) << 20;
+
+  void readHeader(bool optional) {
+    const std::string expectedHeader = std::string("'") + kHeaderWithMaterial + "'" +
+                                       (optional ? std::string(" or '") + kHeaderWithoutMaterial + "'" : "");
+    std::size_t cut = fill(1);
+    if (end_ - begin_ >= 3 && std::memcmp(buf_.data() + begin_, "\xEF\xBB\xBF", 3) == 0)
+      begin_ += 3;  // spreadsheets add a BOM
+    const char* first = buf_.data() + begin_;
+    if (allBlank(first, buf_.data() + cut) && restIsBlank(cut))
+      throw Error(name_ + ": empty file; expected the header " + expectedHeader);
+    std::string_view line(first, cut - begin_);
+    if (!line.empty() && line.back() == '\n') line.remove_suffix(1);
+    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+
+    // R's write.csv and some spreadsheets quote the column names, never the numbers.
+    const auto nameIs = [](std::string_view field, const char* expected) {
+      field = trim(field);
+      if (field.size() >= 2 && field.front() == '"' && field.back() == '"') field = field.substr(1, field.size() - 2);
+      return field == expected;
+    };
+    std::string_view header[7];
+    bool hasMaterial = false;
+    bool headerOk = false;
+    if (splitFields(line, header, 7)) {
+      headerOk = true;
+      for (int k = 0; k < 7; ++k) headerOk = headerOk && nameIs(header[k], kColumns[k]);
+      hasMaterial = true;
+    } else if (optional && splitFields(line, header, 6)) {
+      headerOk = true;
+      for (int k = 0; k < 6; ++k) headerOk = headerOk && nameIs(header[k], kColumns[k + 1]);
+    }
+    if (!headerOk) {
+      const std::size_t comma = line.find(',');
+      double ignored;
+      const bool looksLikeData =
+          parseDouble(line.substr(0, comma == std::string_view::npos ? line.size() : comma), ignored);
+      throw Error(name_ + ":1: " + (looksLikeData ? "missing header" : "bad header '" + printable(line) + "'") +
+                  "; the first line must be " + expectedHeader);
+    }
+    layout_ = CsvLayout{hasMaterial ? 7 : 6, hasMaterial ? kColumns : kColumns + 1,
+                        hasMaterial ? kHeaderWithMaterial : kHeaderWithoutMaterial};
+    begin_ = cut;
+    bodyOffset_ = offset_ - (end_ - begin_);
+  }
+
+  // Whether the file holds only blanks after buffer position `from` (reads ahead in blocks
+  // without keeping them).
+  bool restIsBlank(std::size_t from) const {
+    if (!allBlank(buf_.data() + from, buf_.data() + end_)) return false;
+    std::vector<char> block(kBlock);
+    for (std::size_t at = offset_;;) {
+      const std::size_t n = src_.readAt(at, block.data(), block.size());
+      if (n == 0) return true;
+      if (!allBlank(block.data(), block.data() + n)) return false;
+      at += n;
+    }
+  }
+
+  // Reads until the buffer holds `lines` complete lines past begin_ or the file ends; returns
+  // the buffer position just after the last of them (end_ at the end of the file, which
+  // includes an unterminated last line).
+  std::size_t fill(std::size_t lines) {
+    std::size_t count = 0, scan = begin_;
+    for (;;) {
+      while (count < lines) {
+        const char* nl = findNewline(buf_.data() + scan, buf_.data() + end_);
+        if (!nl) break;
+        scan = static_cast<std::size_t>(nl - buf_.data()) + 1;
+        ++count;
+      }
+      if (count == lines) return scan;
+      if (eof_) return end_;
+      // Keep the unparsed tail at the front, then read another block after it.
+      if (begin_ > 0) {
+        std::memmove(buf_.data(), buf_.data() + begin_, end_ - begin_);
+        scan -= begin_;
+        end_ -= begin_;
+        begin_ = 0;
+      }
+      std::size_t want = kBlock;
+      if (src_.size() >= offset_) {
+        // +1 sees the end of the file in the same read. A whole-file read (readSamples) sizes
+        // the buffer once instead of doubling it; a small file does not get a whole block.
+        const std::size_t rest = src_.size() - offset_ + 1;
+        want = lines == std::numeric_limits<std::size_t>::max() ? rest : std::min(kBlock, rest);
+      }
+      if (buf_.size() < end_ + want) buf_.resize(std::max(end_ + want, 2 * buf_.size()));
+      const std::size_t n = src_.readAt(offset_, buf_.data() + end_, buf_.size() - end_);
+      if (n == 0) eof_ = true;
+      offset_ += n;
+      end_ += n;
+    }
+  }
+
+  // Parses the complete lines in [p, end) into `out`; returns the rows (trailing blank lines
+  // are not rows). A blank run that reaches the end of the chunk is remembered: it is an error
+  // only if a later chunk holds data, as in the file read whole.
+  std::size_t parse(const char* p, const char* end, Samples& out) {
+    if (pendingBlank_ != 0 && !allBlank(p, end))
+      throw Error(name_ + ":" + std::to_string(pendingBlank_) + ": " + emptyLineMessage(layout_));
+    const std::size_t workers = workerCount(static_cast<std::size_t>(end - p));
+    std::vector<const char*> bounds(workers + 1, end);
+    bounds[0] = p;
+    for (std::size_t w = 1; w < workers; ++w) {
+      const char* guess =
+          std::max(bounds[w - 1], p + (end - p) / static_cast<std::ptrdiff_t>(workers) * static_cast<std::ptrdiff_t>(w));
+      const char* cut = findNewline(guess, end);
+      bounds[w] = cut ? cut + 1 : end;
+    }
+    // Counting lines first lets every worker write straight into the one output.
+    std::vector<std::size_t> firstRow(workers + 1, 0);
+    parallelFor(workers, [&](std::size_t w) { firstRow[w + 1] = countLines(bounds[w], bounds[w + 1]); });
+    for (std::size_t w = 0; w < workers; ++w) firstRow[w + 1] += firstRow[w];
+    const std::size_t lines = firstRow[workers];
+
+    allocateSamples(lines, hasMaterial(), out);
+    const RowChecker checker(materialCount_, hasMaterial(), out);
+    std::vector<ChunkError> errors(workers);
+    std::vector<std::size_t> parsed(workers);
+    parallelFor(workers, [&](std::size_t w) {
+      parsed[w] = parseCsvLines(bounds[w], bounds[w + 1], end, layout_, checker, firstRow[w], errors[w]);
+    });
+    for (std::size_t w = 0; w < workers; ++w)
+      if (!errors[w].message.empty())
+        throw Error(name_ + ":" + std::to_string(line_ + firstRow[w] + errors[w].at) + ": " + errors[w].message);
+    // Only trailing blank lines are skipped, so the parsed rows form a prefix of the output.
+    std::size_t rows = 0;
+    for (std::size_t w = 0; w < workers && rows == firstRow[w]; ++w) rows += parsed[w];
+    if (rows < lines && pendingBlank_ == 0) pendingBlank_ = line_ + rows;
+    shrinkSamples(rows, out);
+    line_ += lines;
+    rows_ += rows;
+    return rows;
+  }
+
+  const Source& src_;
+  std::string name_;
+  std::size_t materialCount_;
+  CsvLayout layout_{};
+  std::vector<char> buf_;
+  std::size_t begin_ = 0, end_ = 0;  // unparsed bytes in buf_
+  std::size_t offset_ = 0;           // file offset of buf_[end_]
+  std::size_t bodyOffset_ = 0;       // file offset of the first line after the header
+  bool eof_ = false;
+  std::size_t line_ = 2;             // 1-based file line of buf_[begin_]; the header is line 1
+  std::size_t rows_ = 0;             // rows returned so far
+  std::size_t pendingBlank_ = 0;     // first line of a blank run that ended the last chunk
+};
 
 // ---------------------------------------------------------------------------------------------
 // NPY (https://numpy.org/doc/stable/reference/generated/numpy.lib.format.html)
@@ -557,237 +640,165 @@ void readNpyRows(const char* data, std::size_t rows, std::size_t first, std::siz
   }
 }
 
-Samples readNpy(const char* d, std::size_t size, const std::string& name, std::size_t materialCount, bool optional) {
-  if (size < 10 || std::memcmp(d, "\x93NUMPY", 6) != 0)
-    throw Error(name + ": not an NPY file (no \\x93NUMPY magic); save it with numpy.save");
-  const unsigned major = static_cast<unsigned char>(d[6]), minor = static_cast<unsigned char>(d[7]);
-  if (minor != 0 || major < 1 || major > 3)
-    throw Error(name + ": unsupported NPY format version " + std::to_string(major) + "." + std::to_string(minor) +
-                " (supported: 1.0, 2.0, 3.0)");
-  // Version 1.0 has a 2-byte header length, 2.0 and 3.0 a 4-byte one (both little-endian).
-  const std::size_t headerStart = major == 1 ? 10 : 12;
-  if (size < headerStart) throw Error(name + ": truncated NPY header");
-  std::size_t headerLength =
-      static_cast<unsigned char>(d[8]) | static_cast<std::size_t>(static_cast<unsigned char>(d[9])) << 8;
-  if (major > 1) {
-    std::uint32_t len;
-    std::memcpy(&len, d + 8, 4);
-    headerLength = len;
-  }
-  if (headerLength > size - headerStart) throw Error(name + ": truncated NPY header");
-
-  const NpyHeader h = NpyHeaderParser(std::string_view(d + headerStart, headerLength), name).parse();
-  if (!h.haveDescr || !h.haveFortran || !h.haveShape)
-    throw Error(name + ": malformed NPY header (needs 'descr', 'fortran_order' and 'shape'): " +
-                printable(std::string_view(d + headerStart, headerLength), 120));
-  if (h.structured)
-    throw Error(name +
-                ": structured dtypes are not supported; expected a plain float32 ('<f4') or float64 ('<f8') array");
-
-  std::size_t itemSize = 0;
-  if (h.descr.size() == 3 && h.descr[1] == 'f' && (h.descr[2] == '4' || h.descr[2] == '8')) {
-    if (h.descr[0] == '>')
-      throw Error(name + ": big-endian data ('" + h.descr + "') is not supported; convert with arr.astype('<f" +
-                  h.descr[2] + "')");
-    if (h.descr[0] == '<' || h.descr[0] == '|' || h.descr[0] == '=') itemSize = h.descr[2] == '4' ? 4 : 8;
-  }
-  if (itemSize == 0)
-    throw Error(name + ": unsupported dtype '" + printable(h.descr) +
-                "'; expected float32 ('<f4') or float64 ('<f8'), e.g. arr.astype('<f4')");
-
-  const bool shapeOk = h.shape.size() == 2 && (h.shape[1] == 7 || (optional && h.shape[1] == 6));
-  if (!shapeOk)
-    throw Error(name + ": expected shape (N, 7) with columns " + kHeaderWithMaterial +
-                (optional ? std::string(" or (N, 6) with columns ") + kHeaderWithoutMaterial : std::string()) +
-                ", got " + shapeText(h.shape));
-  const int cols = static_cast<int>(h.shape[1]);
-  const std::uint64_t rows = h.shape[0];
-  if (rows == 0) throw Error(name + ": no samples (shape " + shapeText(h.shape) + ")");
-
-  const std::size_t dataStart = headerStart + headerLength;
-  const std::size_t rowBytes = static_cast<std::size_t>(cols) * itemSize;
-  const std::size_t rowsPresent = (size - dataStart) / rowBytes;
-  if (rows > rowsPresent)  // compared before multiplying: a corrupt shape must not overflow
-    throw Error(name + ": truncated: expected " + std::to_string(rows) + " rows of " + std::to_string(cols) +
-                (itemSize == 4 ? " float32" : " float64") + ", file has " + std::to_string(rowsPresent));
-
-  Samples out = allocateSamples(rows, cols == 7);
-  const RowChecker checker(materialCount, cols == 7, out);
-  const std::size_t workers = workerCount(rows * rowBytes);
-  std::vector<ChunkError> errors(workers);
-  parallelFor(workers, [&](std::size_t w) {
-    const std::size_t first = rows * w / workers, last = rows * (w + 1) / workers;
-    if (itemSize == 4)
-      readNpyRows<float>(d + dataStart, rows, first, last, cols, h.fortranOrder, checker, errors[w]);
-    else
-      readNpyRows<double>(d + dataStart, rows, first, last, cols, h.fortranOrder, checker, errors[w]);
-  });
-  for (const auto& e : errors)  // rows are 0-based, as numpy indexes them
-    if (!e.message.empty()) throw Error(name + ": row " + std::to_string(e.at) + ": " + e.message);
-  return out;
-}
-
-// ---------------------------------------------------------------------------------------------
-// Output
-
-// Unbuffered POSIX writes through our own buffer: every failure (ENOSPC, EFBIG, EIO at close)
-// surfaces as an errno that we turn into a message naming the user's path, not the temporary.
-class OutputFile {
+// NPY rows a chunk at a time: the header is checked up front against the file size, then each
+// chunk is one pread (C order) or one per column (Fortran order) into a reused buffer.
+class NpyReader {
  public:
-  OutputFile(const std::string& tmpPath, const std::string& userPath) : userPath_(userPath) {
-    fd_ = ::open(tmpPath.c_str(), O_WRONLY | O_TRUNC | O_CLOEXEC);
-    if (fd_ < 0) fail(errno);
-    buf_.resize(1 << 20);
+  NpyReader(const Source& src, std::string name, std::size_t materialCount, bool optional)
+      : src_(src), name_(std::move(name)), materialCount_(materialCount) {
+    readHeader(optional);
   }
-  ~OutputFile() {
-    if (fd_ >= 0) ::close(fd_);
-  }
-  OutputFile(const OutputFile&) = delete;
-  OutputFile& operator=(const OutputFile&) = delete;
 
-  void append(const void* p, std::size_t n) {
-    if (n == 0) return;  // p may be the null data() of an empty vector
-    if (n > buf_.size() - used_) {
-      flush();
-      writeAll(static_cast<const char*>(p), n);
-      return;
+  bool hasMaterial() const { return cols_ == 7; }
+
+  bool next(std::size_t maxRows, Samples& out) {
+    if (pos_ == rows_) {
+      shrinkSamples(0, out);
+      return false;
     }
-    std::memcpy(buf_.data() + used_, p, n);
-    used_ += n;
+    const std::size_t count = std::min<std::size_t>(maxRows, rows_ - pos_);
+    raw_.resize(count * rowBytes());
+    if (fortran_) {
+      for (int j = 0; j < cols_; ++j)
+        read(dataStart_ + (static_cast<std::size_t>(j) * rows_ + pos_) * itemSize_,
+             raw_.data() + static_cast<std::size_t>(j) * count * itemSize_, count * itemSize_);
+    } else {
+      read(dataStart_ + pos_ * rowBytes(), raw_.data(), count * rowBytes());
+    }
+    allocateSamples(count, hasMaterial(), out);
+    const RowChecker checker(materialCount_, hasMaterial(), out);
+    const std::size_t workers = workerCount(count * rowBytes());
+    std::vector<ChunkError> errors(workers);
+    parallelFor(workers, [&](std::size_t w) {
+      const std::size_t first = count * w / workers, last = count * (w + 1) / workers;
+      if (itemSize_ == 4)
+        readNpyRows<float>(raw_.data(), count, first, last, cols_, fortran_, checker, errors[w]);
+      else
+        readNpyRows<double>(raw_.data(), count, first, last, cols_, fortran_, checker, errors[w]);
+    });
+    for (const auto& e : errors)  // rows are 0-based, as numpy indexes them
+      if (!e.message.empty()) throw Error(name_ + ": row " + std::to_string(pos_ + e.at) + ": " + e.message);
+    pos_ += count;
+    return true;
   }
-  void close() {
-    flush();
-    const int fd = fd_;
-    fd_ = -1;
-    if (::close(fd) != 0) fail(errno);
-  }
+
+  void rewind() { pos_ = 0; }
 
  private:
-  void flush() {
-    writeAll(buf_.data(), used_);
-    used_ = 0;
+  std::size_t rowBytes() const { return static_cast<std::size_t>(cols_) * itemSize_; }
+
+  void read(std::size_t offset, char* dst, std::size_t n) const {
+    if (src_.readAt(offset, dst, n) != n)  // the file shrank after the header was checked
+      throw Error(name_ + ": truncated while reading (was the file changed during the run?)");
   }
-  void writeAll(const char* p, std::size_t n) {
-    while (n > 0) {
-      const ssize_t w = ::write(fd_, p, n);
-      if (w < 0) {
-        if (errno == EINTR) continue;
-        fail(errno);
-      }
-      p += w;
-      n -= static_cast<std::size_t>(w);
+
+  void readHeader(bool optional) {
+    const std::size_t size = src_.size();
+    char prefix[12] = {};
+    const std::size_t got = src_.readAt(0, prefix, sizeof prefix);
+    if (got < 10 || std::memcmp(prefix, "\x93NUMPY", 6) != 0)
+      throw Error(name_ + ": not an NPY file (no \\x93NUMPY magic); save it with numpy.save");
+    const unsigned major = static_cast<unsigned char>(prefix[6]), minor = static_cast<unsigned char>(prefix[7]);
+    if (minor != 0 || major < 1 || major > 3)
+      throw Error(name_ + ": unsupported NPY format version " + std::to_string(major) + "." + std::to_string(minor) +
+                  " (supported: 1.0, 2.0, 3.0)");
+    // Version 1.0 has a 2-byte header length, 2.0 and 3.0 a 4-byte one (both little-endian).
+    const std::size_t headerStart = major == 1 ? 10 : 12;
+    if (got < headerStart) throw Error(name_ + ": truncated NPY header");
+    std::size_t headerLength =
+        static_cast<unsigned char>(prefix[8]) | static_cast<std::size_t>(static_cast<unsigned char>(prefix[9])) << 8;
+    if (major > 1) {
+      std::uint32_t len;
+      std::memcpy(&len, prefix + 8, 4);
+      headerLength = len;
     }
-  }
-  [[noreturn]] void fail(int err) const {
-    throw Error("cannot write '" + printable(userPath_, 300) + "': " + std::strerror(err));
+    if (headerLength > size - headerStart) throw Error(name_ + ": truncated NPY header");
+    std::string text(headerLength, '\0');
+    read(headerStart, text.data(), headerLength);
+
+    const NpyHeader h = NpyHeaderParser(text, name_).parse();
+    if (!h.haveDescr || !h.haveFortran || !h.haveShape)
+      throw Error(name_ + ": malformed NPY header (needs 'descr', 'fortran_order' and 'shape'): " + printable(text, 120));
+    if (h.structured)
+      throw Error(name_ +
+                  ": structured dtypes are not supported; expected a plain float32 ('<f4') or float64 ('<f8') array");
+
+    if (h.descr.size() == 3 && h.descr[1] == 'f' && (h.descr[2] == '4' || h.descr[2] == '8')) {
+      if (h.descr[0] == '>')
+        throw Error(name_ + ": big-endian data ('" + h.descr + "') is not supported; convert with arr.astype('<f" +
+                    h.descr[2] + "')");
+      if (h.descr[0] == '<' || h.descr[0] == '|' || h.descr[0] == '=') itemSize_ = h.descr[2] == '4' ? 4 : 8;
+    }
+    if (itemSize_ == 0)
+      throw Error(name_ + ": unsupported dtype '" + printable(h.descr) +
+                  "'; expected float32 ('<f4') or float64 ('<f8'), e.g. arr.astype('<f4')");
+
+    const bool shapeOk = h.shape.size() == 2 && (h.shape[1] == 7 || (optional && h.shape[1] == 6));
+    if (!shapeOk)
+      throw Error(name_ + ": expected shape (N, 7) with columns " + kHeaderWithMaterial +
+                  (optional ? std::string(" or (N, 6) with columns ") + kHeaderWithoutMaterial : std::string()) +
+                  ", got " + shapeText(h.shape));
+    cols_ = static_cast<int>(h.shape[1]);
+    fortran_ = h.fortranOrder;
+    if (h.shape[0] == 0) throw Error(name_ + ": no samples (shape " + shapeText(h.shape) + ")");
+
+    dataStart_ = headerStart + headerLength;
+    const std::size_t rowsPresent = (size - dataStart_) / rowBytes();
+    if (h.shape[0] > rowsPresent)  // compared before multiplying: a corrupt shape must not overflow
+      throw Error(name_ + ": truncated: expected " + std::to_string(h.shape[0]) + " rows of " + std::to_string(cols_) +
+                  (itemSize_ == 4 ? " float32" : " float64") + ", file has " + std::to_string(rowsPresent));
+    rows_ = static_cast<std::size_t>(h.shape[0]);
   }
 
-  std::string userPath_;
-  int fd_ = -1;
-  std::vector<char> buf_;
-  std::size_t used_ = 0;
+  const Source& src_;
+  std::string name_;
+  std::size_t materialCount_;
+  int cols_ = 0;
+  std::size_t itemSize_ = 0;
+  bool fortran_ = false;
+  std::size_t dataStart_ = 0, rows_ = 0, pos_ = 0;
+  std::vector<char> raw_;
 };
-
-void writeNpy(OutputFile& f, const std::vector<float>& rgb) {
-  std::string header =
-      "{'descr': '<f4', 'fortran_order': False, 'shape': (" + std::to_string(rgb.size() / 3) + ", 3), }";
-  // Magic (6) + version (2) + length (2) + header + '\n' must be a multiple of 64.
-  const std::size_t total = (10 + header.size() + 1 + 63) / 64 * 64;
-  header.append(total - 10 - header.size() - 1, ' ');
-  header += '\n';
-  const std::size_t len = header.size();
-  const char prefix[10] = {
-      '\x93', 'N', 'U', 'M', 'P', 'Y', 1, 0, static_cast<char>(len & 0xff), static_cast<char>(len >> 8)};
-  f.append(prefix, sizeof prefix);
-  f.append(header.data(), header.size());
-  f.append(rgb.data(), rgb.size() * sizeof(float));
-}
-
-void writeCsv(OutputFile& f, const std::vector<float>& rgb) {
-  f.append("r,g,b\n", 6);
-  // Rounds of `batch` rows per worker: formatting runs in parallel, writing in file order, and
-  // memory stays bounded whatever the row count.
-  constexpr std::size_t batch = 1 << 16;
-  constexpr std::size_t maxValue = 24;  // "%.9g" of a float needs at most 15 characters
-  const std::size_t rows = rgb.size() / 3;
-  const std::size_t workers = workerCount(rows * 3 * 12);
-  std::vector<std::vector<char>> text(workers, std::vector<char>(batch * 3 * maxValue));
-  std::vector<std::size_t> used(workers);
-  for (std::size_t start = 0; start < rows; start += workers * batch) {
-    parallelFor(workers, [&](std::size_t w) {
-      const std::size_t first = std::min(rows, start + w * batch), last = std::min(rows, first + batch);
-      char* p = text[w].data();
-      for (std::size_t i = 3 * first; i < 3 * last; i += 3) {
-        for (int c = 0; c < 3; ++c) {
-          // 9 significant digits round-trip every float; chars_format::general is printf's %g.
-          p = std::to_chars(p, p + maxValue, rgb[i + c], std::chars_format::general, 9).ptr;
-          *p++ = c < 2 ? ',' : '\n';
-        }
-      }
-      used[w] = static_cast<std::size_t>(p - text[w].data());
-    });
-    for (std::size_t w = 0; w < workers; ++w) f.append(text[w].data(), used[w]);
-  }
-}
-
-std::atomic<unsigned> tmpCounter{0};
 
 }  // namespace
 
-Samples readSamples(const std::string& path, std::size_t materialCount, bool materialColumnOptional) {
-  const InputFile file(path);
+struct SampleStream::Impl {
+  Source source;
+  std::unique_ptr<CsvReader> csv;
+  std::unique_ptr<NpyReader> npy;
+  explicit Impl(const std::string& path) : source(path) {}
+};
+
+SampleStream::SampleStream(const std::string& path, std::size_t materialCount, bool materialColumnOptional)
+    : impl_(std::make_unique<Impl>(path)) {
   const std::string name = printable(path, 300);
-  if (hasNpyExtension(path)) return readNpy(file.data(), file.size(), name, materialCount, materialColumnOptional);
-  return readCsv(file.data(), file.data() + file.size(), name, materialCount, materialColumnOptional);
+  if (detail::hasNpyExtension(path))
+    impl_->npy = std::make_unique<NpyReader>(impl_->source, name, materialCount, materialColumnOptional);
+  else
+    impl_->csv = std::make_unique<CsvReader>(impl_->source, name, materialCount, materialColumnOptional);
 }
 
-void writeResults(const std::string& path, const std::vector<float>& rgb) {
-  if (rgb.size() % 3 != 0) throw std::invalid_argument("writeResults: rgb.size() is not a multiple of 3");
-  const bool npy = hasNpyExtension(path);
-  writeAtomically(path, [&](const std::string& tmpPath) {
-    OutputFile f(tmpPath, path);
-    if (npy)
-      writeNpy(f, rgb);
-    else
-      writeCsv(f, rgb);
-    f.close();
-  });
+SampleStream::~SampleStream() = default;
+
+bool SampleStream::hasMaterialColumn() const { return impl_->npy ? impl_->npy->hasMaterial() : impl_->csv->hasMaterial(); }
+
+bool SampleStream::next(std::size_t maxRows, Samples& out) {
+  if (maxRows == 0) throw std::invalid_argument("SampleStream::next: maxRows must be at least 1");
+  return impl_->npy ? impl_->npy->next(maxRows, out) : impl_->csv->next(maxRows, out);
 }
 
-void writeAtomically(const std::string& path, const std::function<void(const std::string& tmpPath)>& write) {
-  namespace fs = std::filesystem;
-  const std::string shown = printable(path, 300);
-  const fs::path target(path);
-  const std::string fileName = target.filename().string();
-  if (fileName.empty() || fileName == "." || fileName == "..")
-    throw Error("cannot write '" + shown + "': not a file name");
-  // Fail before the (possibly long) write rather than at the rename.
-  struct stat st {};
-  if (::stat(path.c_str(), &st) == 0 && S_ISDIR(st.st_mode))
-    throw Error("cannot write '" + shown + "': " + std::strerror(EISDIR));
+void SampleStream::rewind() {
+  if (impl_->npy)
+    impl_->npy->rewind();
+  else
+    impl_->csv->rewind();
+}
 
-  // Same directory, so rename() is atomic; dot-prefixed so directory listings ignore it.
-  const fs::path dir = target.parent_path();
-  const std::string stem = "." + fileName.substr(0, 200) + ".tmp." + std::to_string(::getpid()) + ".";
-  std::string tmp;
-  for (int attempt = 0;; ++attempt) {
-    tmp = (dir / (stem + std::to_string(tmpCounter.fetch_add(1)))).string();
-    // O_EXCL: a stale temporary of a crashed run with the same pid must not be reused.
-    const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
-    if (fd >= 0) {
-      ::close(fd);
-      break;
-    }
-    if (errno != EEXIST || attempt > 100) throw Error("cannot write '" + shown + "': " + std::strerror(errno));
-  }
-  try {
-    write(tmp);
-    if (std::rename(tmp.c_str(), path.c_str()) != 0)
-      throw Error("cannot write '" + shown + "': " + std::strerror(errno));
-  } catch (...) {
-    ::unlink(tmp.c_str());
-    throw;
-  }
+Samples readSamples(const std::string& path, std::size_t materialCount, bool materialColumnOptional) {
+  SampleStream stream(path, materialCount, materialColumnOptional);
+  Samples out;
+  stream.next(std::numeric_limits<std::size_t>::max(), out);
+  return out;
 }
 
 }  // namespace brdfcl

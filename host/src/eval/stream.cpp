@@ -1,0 +1,115 @@
+// Chunked, double-buffered evaluation of sample files (see brdfcl/stream.hpp): one thread reads
+// the next chunk and another writes the previous results while this one drives the device.
+#include "brdfcl/stream.hpp"
+
+#include <algorithm>
+#include <functional>
+#include <future>
+#include <stdexcept>
+#include <string>
+
+#include "brdfcl/error.hpp"
+
+namespace brdfcl {
+
+namespace {
+
+// One evaluation: directions (owned, or shared by the blocks of an in-memory grid) and the
+// materials they meet: every material by index (batch) or the block [m0, m0 + mc) (grid).
+struct Work {
+  Samples samples;
+  const Samples* shared = nullptr;
+  std::size_t m0 = 0, mc = 0;
+  const Samples& directions() const { return shared ? *shared : samples; }
+};
+
+}  // namespace
+
+StreamStats evaluateStream(Evaluator& evaluator, const std::vector<MaterialParams>& materials,
+                           SampleStream& samples, ResultWriter& out, const StreamOptions& options) {
+  const std::size_t chunk = options.chunk;
+  if (chunk < 1 || chunk > StreamOptions::kMaxChunk)
+    throw Error("chunk of " + std::to_string(chunk) + " samples is out of range; use 1 to " +
+                std::to_string(StreamOptions::kMaxChunk));
+  if (materials.empty()) throw Error("no materials to evaluate");
+  const std::size_t nm = materials.size();
+  StreamStats stats;
+
+  // What to evaluate next, filled on the reader thread; false when nothing is left.
+  std::function<bool(Work&)> produce;
+  Samples allDirections;  // an in-memory grid's directions
+  std::size_t material = 0;
+  if (!options.grid) {
+    produce = [&](Work& w) {
+      w.m0 = 0;
+      w.mc = nm;
+      return samples.next(chunk, w.samples);
+    };
+  } else {
+    Samples probe;
+    samples.next(chunk, allDirections);
+    if (!samples.next(chunk, probe)) {
+      // Every direction fits in one chunk: blocks of materials whose output fits one chunk.
+      const std::size_t block = std::max<std::size_t>(1, chunk / allDirections.size());
+      produce = [&, block](Work& w) {
+        if (material == nm) return false;
+        w.shared = &allDirections;
+        w.m0 = material;
+        w.mc = std::min(block, nm - material);
+        material += w.mc;
+        return true;
+      };
+    } else {
+      // Output is material-major, so the directions are read once per material.
+      allDirections = Samples{};
+      samples.rewind();
+      produce = [&](Work& w) {
+        while (material < nm) {
+          if (samples.next(chunk, w.samples)) {
+            w.m0 = material;
+            w.mc = 1;
+            return true;
+          }
+          if (++material < nm) samples.rewind();
+        }
+        return false;
+      };
+    }
+  }
+
+  std::unique_ptr<SoaBatch> batch;
+  if (!options.grid)
+    batch = std::make_unique<SoaBatch>(evaluator, materials, std::min(chunk, evaluator.launchLimit()));
+
+  // Two slots each: while slot k is evaluated, slot k+1 is read and the results of slot k-1
+  // are written. Futures of std::async wait in their destructors, so an exception here never
+  // leaves a thread touching a slot.
+  Work work[2];
+  std::vector<float> rgb[2];
+  std::future<bool> reading = std::async(std::launch::async, produce, std::ref(work[0]));
+  std::future<void> writing;
+  for (std::size_t k = 0;; ++k) {
+    Work& w = work[k % 2];
+    if (!reading.get()) break;
+    reading = std::async(std::launch::async, produce, std::ref(work[(k + 1) % 2]));
+
+    const Samples& dirs = w.directions();
+    std::vector<float>& result = rgb[k % 2];
+    if (!options.grid) {
+      result.resize(3 * dirs.size());
+      batch->evaluate(dirs, result.data());
+    } else {
+      result = evaluator.evaluateGrid(materials, dirs, w.m0, w.mc);
+    }
+    if (!options.grid || w.m0 == 0) stats.samples += dirs.size();
+    stats.rows += result.size() / 3;
+    ++stats.chunks;
+
+    if (writing.valid()) writing.get();  // frees rgb[(k + 1) % 2] for the next round
+    writing = std::async(std::launch::async, [&out, &result] { out.append(result.data(), result.size() / 3); });
+  }
+  if (writing.valid()) writing.get();
+  return stats;
+}
+
+}  // namespace brdfcl

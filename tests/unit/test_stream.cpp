@@ -1,0 +1,595 @@
+// Streaming: SampleStream reads any file in chunks with readSamples's exact rows and messages,
+// ResultWriter writes chunks byte-identical to writeResults, evaluateStream and `brdfcl eval
+// --chunk` give a one-shot run's bytes, and 100M samples evaluate in under 1 GiB resident.
+#include <gtest/gtest.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <random>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "brdfcl/stream.hpp"
+#include "process.hpp"
+#include "support.hpp"
+
+using namespace brdfcl;
+using namespace brdfcl::test;
+
+namespace {
+
+void writeFile(const std::string& path, const std::string& content) {
+  std::ofstream out(path, std::ios::binary);
+  out << content;
+  if (!out) throw std::runtime_error("cannot write " + path);
+}
+
+// NPY v1.0 header of a `rows` x `cols` float array, padded as numpy pads it (to 64 bytes).
+std::string npyHeader(std::size_t rows, std::size_t cols, bool float32, bool fortran) {
+  std::string dict = std::string("{'descr': '") + (float32 ? "<f4" : "<f8") + "', 'fortran_order': " +
+                     (fortran ? "True" : "False") + ", 'shape': (" + std::to_string(rows) + ", " +
+                     std::to_string(cols) + "), }";
+  dict.append(63 - (10 + dict.size()) % 64, ' ');
+  dict += '\n';
+  std::string out("\x93NUMPY\x01\x00", 8);
+  out += static_cast<char>(dict.size() & 0xff);
+  out += static_cast<char>(dict.size() >> 8);
+  return out + dict;
+}
+
+// The file: values given row-major, stored float32 or float64, C or Fortran order.
+std::string npyFile(const std::vector<double>& values, std::size_t cols, bool float32, bool fortran) {
+  const std::size_t rows = values.size() / cols;
+  std::string out = npyHeader(rows, cols, float32, fortran);
+  for (std::size_t k = 0; k < values.size(); ++k) {
+    const std::size_t i = fortran ? k % rows : k / cols, j = fortran ? k / rows : k % cols;
+    const double v = values[i * cols + j];
+    if (float32) {
+      const float f = static_cast<float>(v);
+      out.append(reinterpret_cast<const char*>(&f), 4);
+    } else {
+      out.append(reinterpret_cast<const char*>(&v), 8);
+    }
+  }
+  return out;
+}
+
+// Row-major material, L, V (or L, V) values of random samples; directions are not unit length,
+// so the readers' normalization is exercised too.
+std::vector<double> randomRows(std::size_t n, bool withMaterial, std::uint32_t materials, std::uint64_t salt) {
+  std::mt19937_64 rng(seed() + salt);
+  std::uniform_real_distribution<double> u(-2.0, 2.0);
+  std::uniform_int_distribution<std::uint32_t> pick(0, materials - 1);
+  std::vector<double> v;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (withMaterial) v.push_back(pick(rng));
+    for (int k = 0; k < 6; ++k) v.push_back(u(rng));
+    v.back() += 2.5;  // mostly above the horizon
+  }
+  return v;
+}
+
+std::string csvFile(const std::vector<double>& values, bool withMaterial, const std::string& eol = "\n",
+                    bool terminateLast = true) {
+  std::ostringstream o;
+  o.precision(17);
+  o << (withMaterial ? "material,Lx,Ly,Lz,Vx,Vy,Vz" : "Lx,Ly,Lz,Vx,Vy,Vz") << eol;
+  const std::size_t cols = withMaterial ? 7 : 6;
+  for (std::size_t i = 0; i < values.size(); i += cols) {
+    for (std::size_t k = 0; k < cols; ++k) o << (k ? "," : "") << values[i + k];
+    if (i + cols < values.size() || terminateLast) o << eol;
+  }
+  return o.str();
+}
+
+// Every chunk of `stream` appended together.
+Samples readAllChunks(SampleStream& stream, std::size_t chunk, std::size_t* chunks = nullptr) {
+  Samples all, part;
+  std::size_t n = 0;
+  while (stream.next(chunk, part)) {
+    EXPECT_GE(part.size(), 1u);
+    EXPECT_LE(part.size(), chunk);
+    all.material.insert(all.material.end(), part.material.begin(), part.material.end());
+    all.L.insert(all.L.end(), part.L.begin(), part.L.end());
+    all.V.insert(all.V.end(), part.V.begin(), part.V.end());
+    ++n;
+  }
+  EXPECT_EQ(part.size(), 0u) << "next() returning false must leave the chunk empty";
+  if (chunks) *chunks = n;
+  return all;
+}
+
+void expectSameSamples(const Samples& a, const Samples& b, const std::string& what) {
+  EXPECT_EQ(a.material, b.material) << what;
+  // Bitwise: the chunked reader must normalize exactly as the whole-file one.
+  EXPECT_TRUE(a.L.size() == b.L.size() && std::memcmp(a.L.data(), b.L.data(), a.L.size() * 4) == 0) << what;
+  EXPECT_TRUE(a.V.size() == b.V.size() && std::memcmp(a.V.data(), b.V.data(), a.V.size() * 4) == 0) << what;
+}
+
+const std::size_t kChunks[] = {1, 2, 7, 64, 999, 1000, 1001, 100000};
+
+// ---------------------------------------------------------------------------------------------
+// SampleStream
+
+TEST(SampleStream, ChunksConcatenateToTheWholeFileRead) {
+  ScratchDir dir("stream");
+  const std::size_t n = 1000;
+  struct Case {
+    std::string name, content;
+    bool optional;
+  };
+  const auto withM = randomRows(n, true, 5, 1), without = randomRows(n, false, 1, 2);
+  const std::vector<Case> cases = {
+      {"m.csv", csvFile(withM, true), false},
+      {"crlf.csv", csvFile(withM, true, "\r\n"), false},
+      {"open-end.csv", csvFile(withM, true, "\n", false), false},
+      {"bom-trailing-blanks.csv", "\xEF\xBB\xBF" + csvFile(withM, true) + "\n  \n\t\n\n", false},
+      {"dirs.csv", csvFile(without, false), true},
+      {"c32.npy", npyFile(withM, 7, true, false), false},
+      {"c64.npy", npyFile(withM, 7, false, false), false},
+      {"f32.npy", npyFile(withM, 7, true, true), false},
+      {"f64-dirs.npy", npyFile(without, 6, false, true), true},
+  };
+  for (const auto& c : cases) {
+    const std::string p = dir.path(c.name);
+    writeFile(p, c.content);
+    const Samples whole = readSamples(p, 5, c.optional);
+    ASSERT_EQ(whole.size(), n) << c.name;
+    for (std::size_t chunk : kChunks) {
+      SampleStream stream(p, 5, c.optional);
+      EXPECT_EQ(stream.hasMaterialColumn(), c.name.find("dirs") == std::string::npos) << c.name;
+      std::size_t chunks = 0;
+      expectSameSamples(readAllChunks(stream, chunk, &chunks), whole, c.name + " chunk " + std::to_string(chunk));
+      EXPECT_EQ(chunks, (n + chunk - 1) / chunk) << c.name << " chunk " << chunk;
+    }
+  }
+}
+
+TEST(SampleStream, RewindStartsAgainFromTheFirstRow) {
+  ScratchDir dir("stream");
+  const auto rows = randomRows(300, true, 3, 3);
+  for (const std::string name : {"r.csv", "r.npy"}) {
+    const std::string p = dir.path(name);
+    writeFile(p, name == "r.csv" ? csvFile(rows, true) : npyFile(rows, 7, true, false));
+    SampleStream stream(p, 3, false);
+    Samples part;
+    ASSERT_TRUE(stream.next(100, part));
+    stream.rewind();
+    const Samples again = readAllChunks(stream, 64);
+    stream.rewind();
+    expectSameSamples(readAllChunks(stream, 1000), again, name);
+    expectSameSamples(again, readSamples(p, 3, false), name);
+  }
+}
+
+// A bad row found in chunk k is reported with its file line (CSV) or row (NPY), as readSamples
+// reports it: the streamed run must name the same place whatever the chunk size.
+TEST(SampleStream, ErrorsNameTheSameLineAsTheWholeFileRead) {
+  ScratchDir dir("stream");
+  const auto rows = randomRows(600, true, 4, 4);
+  std::string good = csvFile(rows, true);
+  std::vector<std::string> lines;
+  {
+    std::istringstream in(good);
+    for (std::string l; std::getline(in, l);) lines.push_back(l);
+  }
+  const auto join = [](const std::vector<std::string>& ls) {
+    std::string s;
+    for (const auto& l : ls) s += l + "\n";
+    return s;
+  };
+  struct Case {
+    std::string name;
+    std::vector<std::string> lines;
+  };
+  std::vector<Case> cases;
+  auto edited = [&](std::size_t line, const std::string& text) {  // 1-based file line
+    auto ls = lines;
+    ls[line - 1] = text;
+    return ls;
+  };
+  cases.push_back({"nan.csv", edited(450, "1,nan,0,1,0,0,1")});
+  cases.push_back({"word.csv", edited(2, "1,x,0,1,0,0,1")});
+  cases.push_back({"short.csv", edited(601, "1,0,0,1")});
+  cases.push_back({"index.csv", edited(300, "4,0,0,1,0,0,1")});
+  cases.push_back({"zero.csv", edited(123, "1,0,0,0,0,0,1")});
+  // Blank lines followed by data, at every position relative to a chunk boundary.
+  for (std::size_t at : {2, 3, 8, 9, 10, 101, 102, 600}) {
+    auto ls = lines;
+    ls.insert(ls.begin() + static_cast<std::ptrdiff_t>(at - 1), {"", "  "});
+    cases.push_back({"blank-" + std::to_string(at) + ".csv", ls});
+  }
+  for (const auto& c : cases) {
+    const std::string p = dir.path(c.name);
+    writeFile(p, join(c.lines));
+    const std::string expected = errorOf([&] { readSamples(p, 4, false); });
+    ASSERT_FALSE(expected.empty()) << c.name << " must be rejected";
+    for (std::size_t chunk : {1, 7, 8, 9, 100, 101, 599, 600, 601, 5000}) {
+      const std::string got = errorOf([&] {
+        SampleStream stream(p, 4, false);
+        readAllChunks(stream, chunk);
+      });
+      EXPECT_EQ(got, expected) << c.name << " chunk " << chunk;
+    }
+  }
+  // NPY rows: NaN at row 517 and an out-of-range index at row 3.
+  auto nanRows = rows;
+  nanRows[517 * 7 + 5] = std::nan("");
+  auto badIndex = rows;
+  badIndex[3 * 7] = 9;
+  for (const auto& [name, values] : {std::pair{std::string("nan.npy"), nanRows}, {"index.npy", badIndex}}) {
+    for (bool fortran : {false, true}) {
+      const std::string p = dir.path(name);
+      writeFile(p, npyFile(values, 7, true, fortran));
+      const std::string expected = errorOf([&] { readSamples(p, 4, false); });
+      ASSERT_FALSE(expected.empty());
+      for (std::size_t chunk : {1, 100, 517, 518, 1000}) {
+        const std::string got = errorOf([&] {
+          SampleStream stream(p, 4, false);
+          readAllChunks(stream, chunk);
+        });
+        EXPECT_EQ(got, expected) << name << " fortran " << fortran << " chunk " << chunk;
+      }
+    }
+  }
+}
+
+TEST(SampleStream, TrailingBlankLinesAcrossChunksAreNotRows) {
+  ScratchDir dir("stream");
+  const auto rows = randomRows(10, true, 2, 5);
+  const std::string p = dir.path("t.csv");
+  writeFile(p, csvFile(rows, true) + std::string(25, '\n') + "   \n\r\n");
+  for (std::size_t chunk : {1, 3, 10, 11, 12, 40}) {
+    SampleStream stream(p, 2, false);
+    EXPECT_EQ(readAllChunks(stream, chunk).size(), 10u) << chunk;
+  }
+  const std::string empty = dir.path("e.csv");
+  writeFile(empty, "material,Lx,Ly,Lz,Vx,Vy,Vz\n\n\n");
+  EXPECT_EQ(errorOf([&] {
+              SampleStream stream(empty, 2, false);
+              readAllChunks(stream, 1);
+            }),
+            empty + ": no samples (the file has a header but no rows)");
+}
+
+// The header is checked when the stream opens; a file cut short afterwards (another process
+// rewriting it) must fail cleanly, not read garbage.
+TEST(SampleStream, AFileCutShortWhileStreamingIsAnError) {
+  ScratchDir dir("stream");
+  const std::string p = dir.path("cut.npy");
+  writeFile(p, npyFile(randomRows(1000, true, 2, 21), 7, true, false));
+  SampleStream stream(p, 2, false);
+  Samples part;
+  ASSERT_TRUE(stream.next(400, part));
+  ASSERT_EQ(::truncate(p.c_str(), 128 + 28 * 500), 0);
+  EXPECT_EQ(errorOf([&] { stream.next(400, part); }),
+            p + ": truncated while reading (was the file changed during the run?)");
+}
+
+// Pipes cannot seek: the stream reads them whole first, for NPY (Fortran order needs it) and CSV.
+TEST(SampleStream, ReadsFromAPipe) {
+  ScratchDir dir("stream");
+  const auto rows = randomRows(500, true, 3, 6);
+  for (const std::string name : {"fifo.csv", "fifo.npy"}) {
+    const std::string content = name == "fifo.csv" ? csvFile(rows, true) : npyFile(rows, 7, false, true);
+    const std::string plain = dir.path("plain-" + name), fifo = dir.path(name);
+    writeFile(plain, content);
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    std::thread writer([&] { writeFile(fifo, content); });
+    Samples got;
+    try {
+      SampleStream stream(fifo, 3, false);
+      got = readAllChunks(stream, 77);
+    } catch (...) {
+      writer.join();
+      throw;
+    }
+    writer.join();
+    expectSameSamples(got, readSamples(plain, 3, false), name);
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// ResultWriter
+
+TEST(ResultWriter, ChunksAreByteIdenticalToWriteResults) {
+  ScratchDir dir("results");
+  std::mt19937_64 rng(seed() + 7);
+  std::uniform_real_distribution<float> u(0.0f, 50.0f);
+  for (std::size_t n : {0, 1, 5, 1000, 70000}) {
+    std::vector<float> rgb(3 * n);
+    for (auto& v : rgb) v = u(rng);
+    if (n > 2) rgb[4] = 0.0f, rgb[5] = 1e-38f;
+    for (const std::string ext : {".csv", ".npy"}) {
+      const std::string whole = dir.path("whole" + ext), chunked = dir.path("chunked" + ext);
+      writeResults(whole, rgb);
+      for (std::size_t chunk : {1, 3, 4096, 100000}) {
+        ResultWriter w(chunked);
+        for (std::size_t first = 0; first < n; first += chunk)
+          w.append(rgb.data() + 3 * first, std::min(chunk, n - first));
+        EXPECT_EQ(w.rows(), n);
+        w.commit();
+        EXPECT_EQ(slurp(chunked), slurp(whole)) << n << " rows, chunk " << chunk << ext;
+      }
+    }
+  }
+  const std::string npy = slurp(dir.path("whole.npy"));
+  EXPECT_EQ(npy.size(), 128u + 70000u * 12u);
+  EXPECT_NE(npy.find("'shape': (70000, 3)"), std::string::npos) << npy.substr(0, 128);
+}
+
+TEST(ResultWriter, WithoutCommitLeavesNothingAndKeepsTheOldFile) {
+  ScratchDir dir("results");
+  const std::string p = dir.path("o.npy");
+  writeFile(p, "previous results");
+  {
+    ResultWriter w(p);
+    const float rgb[6] = {1, 2, 3, 4, 5, 6};
+    w.append(rgb, 2);
+    EXPECT_EQ(dir.list().size(), 2u) << "the temporary sits beside the output while writing";
+  }
+  EXPECT_EQ(dir.list(), std::vector<std::string>{"o.npy"});
+  EXPECT_EQ(slurp(p), "previous results");
+  EXPECT_EQ(errorOf([&] { ResultWriter w(dir.path("missing/o.csv")); }),
+            "cannot write '" + dir.path("missing/o.csv") + "': No such file or directory");
+}
+
+// ---------------------------------------------------------------------------------------------
+// evaluateStream: chunked runs give the one-shot bytes
+
+std::vector<MaterialParams> someMaterials(std::size_t n, std::uint64_t salt) {
+  std::mt19937_64 rng(seed() + salt);
+  std::vector<MaterialParams> m;
+  for (std::size_t i = 0; i < n; ++i) m.push_back(randomMaterial(rng));
+  return m;
+}
+
+std::string streamToFile(Evaluator& ev, const std::vector<MaterialParams>& materials, const std::string& in,
+                         const std::string& out, std::size_t chunk, bool grid, StreamStats* stats = nullptr) {
+  SampleStream samples(in, grid ? 0 : materials.size(), grid);
+  ResultWriter writer(out);
+  StreamOptions o;
+  o.chunk = chunk;
+  o.grid = grid;
+  const StreamStats s = evaluateStream(ev, materials, samples, writer, o);
+  if (stats) *stats = s;
+  writer.commit();
+  return slurp(out);
+}
+
+TEST(Stream, ChunkedEvaluationEqualsOneShot) {
+  ScratchDir dir("stream");
+  const auto materials = someMaterials(6, 8);
+  const auto rows = randomRows(3000, true, 6, 9);
+  Evaluator ev(runtime(), EvalOptions{});
+  for (const std::string name : {"s.csv", "s.npy"}) {
+    const std::string in = dir.path(name), ext = name.substr(1);
+    writeFile(in, name == "s.csv" ? csvFile(rows, true) : npyFile(rows, 7, true, false));
+    writeResults(dir.path("one-shot" + ext), ev.evaluate(materials, readSamples(in, materials.size(), false)));
+    const std::string expected = slurp(dir.path("one-shot" + ext));
+    for (std::size_t chunk : {7, 16, 1000, 3000, 1 << 20}) {
+      StreamStats stats;
+      EXPECT_EQ(streamToFile(ev, materials, in, dir.path("streamed" + ext), chunk, false, &stats), expected)
+          << name << " chunk " << chunk;
+      EXPECT_EQ(stats.samples, 3000u);
+      EXPECT_EQ(stats.rows, 3000u);
+      EXPECT_EQ(stats.chunks, (3000 + chunk - 1) / chunk);
+    }
+  }
+  // Large launches run in fixed work-groups, small ones in the runtime's: same bits either way.
+  const auto many = randomRows(150000, true, 6, 20);
+  const std::string big = dir.path("big.npy");
+  writeFile(big, npyFile(many, 7, true, false));
+  writeResults(dir.path("big-one.npy"), ev.evaluate(materials, readSamples(big, materials.size(), false)));
+  for (std::size_t chunk : {100000, 7777})
+    EXPECT_EQ(streamToFile(ev, materials, big, dir.path("big-streamed.npy"), chunk, false),
+              slurp(dir.path("big-one.npy")))
+        << "chunk " << chunk;
+  // One sample per chunk, on a short file: every launch is a partial group of lanes.
+  const std::string tiny = dir.path("tiny.npy");
+  const auto tinyRows = std::vector<double>(rows.begin(), rows.begin() + 7 * 40);
+  writeFile(tiny, npyFile(tinyRows, 7, true, false));
+  writeResults(dir.path("tiny-one.npy"), ev.evaluate(materials, readSamples(tiny, materials.size(), false)));
+  EXPECT_EQ(streamToFile(ev, materials, tiny, dir.path("tiny-streamed.npy"), 1, false), slurp(dir.path("tiny-one.npy")));
+}
+
+// The grid is material-major: a direction file that fits one chunk is read once and evaluated
+// for blocks of materials; a larger one is read once per material.
+TEST(Stream, ChunkedGridEqualsOneShot) {
+  ScratchDir dir("stream");
+  const auto materials = someMaterials(5, 10);
+  const auto rows = randomRows(1000, false, 1, 11);
+  const std::string in = dir.path("d.npy");
+  writeFile(in, npyFile(rows, 6, false, false));
+  Evaluator ev(runtime(), EvalOptions{});
+  writeResults(dir.path("one-shot.npy"), ev.evaluateGrid(materials, readSamples(in, 0, true)));
+  const std::string expected = slurp(dir.path("one-shot.npy"));
+  struct Case {
+    std::size_t chunk, evaluations;
+  };
+  for (const Case c : {Case{100000, 1}, Case{2000, 3}, Case{1000, 5}, Case{999, 10}, Case{64, 5 * 16}}) {
+    StreamStats stats;
+    EXPECT_EQ(streamToFile(ev, materials, in, dir.path("streamed.npy"), c.chunk, true, &stats), expected)
+        << "chunk " << c.chunk;
+    EXPECT_EQ(stats.rows, 5000u);
+    EXPECT_EQ(stats.samples, 1000u);
+    EXPECT_EQ(stats.chunks, c.evaluations) << "chunk " << c.chunk;
+  }
+  const std::string csv = dir.path("d.csv");
+  writeFile(csv, csvFile(rows, false));
+  writeResults(dir.path("one-shot.csv"), ev.evaluateGrid(materials, readSamples(csv, 0, true)));
+  EXPECT_EQ(streamToFile(ev, materials, csv, dir.path("streamed.csv"), 333, true), slurp(dir.path("one-shot.csv")));
+}
+
+TEST(Stream, RejectsAChunkOutOfRangeAndNoMaterials) {
+  ScratchDir dir("stream");
+  const std::string in = dir.path("s.csv");
+  writeFile(in, csvFile(randomRows(3, true, 1, 12), true));
+  Evaluator ev(runtime(), EvalOptions{});
+  SampleStream samples(in, 1, false);
+  ResultWriter out(dir.path("o.csv"));
+  StreamOptions o;
+  o.chunk = 0;
+  EXPECT_EQ(errorOf([&] { evaluateStream(ev, someMaterials(1, 13), samples, out, o); }),
+            "chunk of 0 samples is out of range; use 1 to 268435456");
+  o.chunk = 10;
+  EXPECT_EQ(errorOf([&] { evaluateStream(ev, {}, samples, out, o); }), "no materials to evaluate");
+}
+
+// ---------------------------------------------------------------------------------------------
+// The CLI
+
+const char* kMaterialsJson = R"({"materials": [
+  {"pbrMetallicRoughness": {"baseColorFactor": [0.8, 0.35, 0.1, 1], "metallicFactor": 0, "roughnessFactor": 0.45}},
+  {"pbrMetallicRoughness": {"baseColorFactor": [0.3, 0.5, 0.7, 1], "metallicFactor": 0.25, "roughnessFactor": 0.6},
+   "extensions": {"KHR_materials_sheen": {"sheenColorFactor": [0.6, 0.4, 0.5], "sheenRoughnessFactor": 0.35},
+                  "KHR_materials_clearcoat": {"clearcoatFactor": 0.7, "clearcoatRoughnessFactor": 0.2},
+                  "KHR_materials_anisotropy": {"anisotropyStrength": 0.6, "anisotropyRotation": 0.9}}},
+  {"pbrMetallicRoughness": {"metallicFactor": 1, "roughnessFactor": 0.2}}
+]})";
+
+RunResult eval(const ScratchDir& dir, const std::vector<std::string>& args) {
+  std::vector<std::string> argv{BRDFCL_CLI_PATH, "eval"};
+  argv.insert(argv.end(), args.begin(), args.end());
+  return runProcess(argv, dir.dir());
+}
+
+TEST(StreamCli, ChunkOptionGivesIdenticalFiles) {
+  ScratchDir dir("stream-cli");
+  writeFile(dir.path("m.json"), kMaterialsJson);
+  const auto rows = randomRows(2000, true, 3, 14);
+  writeFile(dir.path("s.csv"), csvFile(rows, true));
+  writeFile(dir.path("s.npy"), npyFile(rows, 7, true, true));
+  writeFile(dir.path("d.npy"), npyFile(randomRows(700, false, 1, 15), 6, true, false));
+  struct Case {
+    std::string in, out;
+    std::vector<std::string> extra;
+  };
+  for (const Case& c : {Case{"s.csv", ".csv", {}}, Case{"s.npy", ".npy", {}}, Case{"s.npy", ".csv", {"--lobe", "sheen"}},
+                        Case{"d.npy", ".npy", {"--grid"}}}) {
+    std::string reference;
+    for (const std::string chunk : {"", "1000000", "2000", "333", "5"}) {
+      std::vector<std::string> args{"--materials", dir.path("m.json"), "--samples", dir.path(c.in), "--out",
+                                    dir.path("o" + c.out)};
+      args.insert(args.end(), c.extra.begin(), c.extra.end());
+      if (!chunk.empty()) args.insert(args.end(), {"--chunk", chunk});
+      const RunResult r = eval(dir, args);
+      ASSERT_EQ(r.status, 0) << r.describe();
+      const std::string got = slurp(dir.path("o" + c.out));
+      if (chunk.empty())
+        reference = got;
+      else
+        EXPECT_EQ(got, reference) << c.in << " -> " << c.out << " --chunk " << chunk;
+    }
+  }
+}
+
+TEST(StreamCli, ABadRowLateInTheFileLeavesNoOutput) {
+  ScratchDir dir("stream-cli");
+  writeFile(dir.path("m.json"), kMaterialsJson);
+  std::string csv = csvFile(randomRows(5000, true, 3, 16), true);
+  csv += "1,0,0,1,0,0,inf\n";  // line 5002
+  writeFile(dir.path("s.csv"), csv);
+  writeFile(dir.path("o.npy"), "previous results");
+  const RunResult r = eval(dir, {"--materials", dir.path("m.json"), "--samples", dir.path("s.csv"), "--out",
+                                 dir.path("o.npy"), "--chunk", "100"});
+  EXPECT_EQ(r.status, 2) << r.describe();
+  EXPECT_EQ(r.errorLines(), std::vector<std::string>{"brdfcl: " + dir.path("s.csv") +
+                                                     ":5002: field 'Vz' is not finite: 'inf'"});
+  EXPECT_EQ(slurp(dir.path("o.npy")), "previous results");
+  EXPECT_EQ(dir.list(), (std::vector<std::string>{"m.json", "o.npy", "s.csv", "stderr", "stdout"}));
+}
+
+TEST(StreamCli, ChunkOutOfRange) {
+  ScratchDir dir("stream-cli");
+  writeFile(dir.path("m.json"), kMaterialsJson);
+  writeFile(dir.path("s.csv"), csvFile(randomRows(3, true, 3, 17), true));
+  for (const std::string v : {"0", "-5", "268435457"}) {
+    const RunResult r = eval(dir, {"--materials", dir.path("m.json"), "--samples", dir.path("s.csv"), "--out",
+                                   dir.path("o.csv"), "--chunk", v});
+    EXPECT_EQ(r.status, 2) << r.describe();
+    EXPECT_EQ(r.errorLines(),
+              std::vector<std::string>{"brdfcl: --chunk " + v + " is out of range; use 1 to 268435456"});
+  }
+  EXPECT_EQ(dir.list(), (std::vector<std::string>{"m.json", "s.csv", "stderr", "stdout"}));
+}
+
+// The issue's bound: a 100M-sample NPY file (2.8 GB of float32) evaluates with under 1 GiB
+// resident. BRDFCL_STREAM_SAMPLES overrides the count (sanitizer builds use 10M: their shadow
+// memory and quarantine are not the tool's own). Rows repeat a block of random samples, so a
+// spot check of rows anywhere in the output can be computed from the block.
+TEST(StreamCli, HundredMillionSamplesStayUnderOneGiB) {
+#if defined(__SANITIZE_ADDRESS__)
+  std::size_t n = 10'000'000;
+#else
+  std::size_t n = 100'000'000;
+#endif
+  if (const char* e = std::getenv("BRDFCL_STREAM_SAMPLES")) n = std::strtoull(e, nullptr, 10);
+  ScratchDir dir("stream-big");
+  writeFile(dir.path("m.json"), kMaterialsJson);
+  constexpr std::size_t kBlock = 1 << 16;
+  const auto block = randomRows(kBlock, true, 3, 18);
+  std::vector<float> blockData(block.begin(), block.end());
+  {
+    const std::string h = npyHeader(n, 7, true, false);
+    std::ofstream out(dir.path("big.npy"), std::ios::binary);
+    out.write(h.data(), static_cast<std::streamsize>(h.size()));
+    for (std::size_t done = 0; done < n; done += kBlock) {
+      const std::size_t rows = std::min(kBlock, n - done);
+      out.write(reinterpret_cast<const char*>(blockData.data()), static_cast<std::streamsize>(rows * 7 * 4));
+    }
+    ASSERT_TRUE(out.good()) << "writing the input file";
+  }
+  const auto start = std::chrono::steady_clock::now();
+  std::vector<std::string> argv{BRDFCL_CLI_PATH,    "eval",  "--materials", dir.path("m.json"), "--samples",
+                                dir.path("big.npy"), "--out", dir.path("out.npy")};
+  const RunResult r = runProcess(argv, dir.dir(), "", std::chrono::seconds(900));
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  ASSERT_EQ(r.status, 0) << r.describe();
+  std::printf("[ stream   ] %zu samples in %.1f s, peak resident %.0f MiB\n", n, seconds, r.maxRssKiB / 1024.0);
+  EXPECT_LT(r.maxRssKiB, 1024 * 1024) << "peak resident set of `brdfcl eval` on " << n << " samples";
+
+  struct stat st {};
+  ASSERT_EQ(::stat(dir.path("out.npy").c_str(), &st), 0);
+  EXPECT_EQ(static_cast<std::size_t>(st.st_size), 128 + 12 * n);
+  std::ifstream out(dir.path("out.npy"), std::ios::binary);
+  std::string head(128, '\0');
+  out.read(head.data(), 128);
+  EXPECT_NE(head.find("'shape': (" + std::to_string(n) + ", 3)"), std::string::npos) << head;
+
+  // Spot check: rows spread over the whole file against the library on the block's samples.
+  Samples blockSamples;
+  for (std::size_t i = 0; i < kBlock; ++i) {
+    blockSamples.material.push_back(static_cast<std::uint32_t>(blockData[7 * i]));
+    for (int k = 0; k < 3; ++k) {
+      blockSamples.L.push_back(blockData[7 * i + 1 + k]);
+      blockSamples.V.push_back(blockData[7 * i + 4 + k]);
+    }
+  }
+  // The reader normalizes; the library expects unit vectors, so go through the same reader.
+  writeFile(dir.path("block.npy"), npyFile(block, 7, true, false));
+  const auto materials = readMaterials(dir.path("m.json"));
+  Evaluator ev(runtime(), EvalOptions{});
+  const auto expected = ev.evaluate(materials, readSamples(dir.path("block.npy"), materials.size(), false));
+  std::mt19937_64 rng(seed() + 19);
+  std::uniform_int_distribution<std::size_t> pick(0, n - 1);
+  for (int k = 0; k < 2000; ++k) {
+    const std::size_t row = k == 0 ? n - 1 : pick(rng);
+    float got[3];
+    out.seekg(static_cast<std::streamoff>(128 + 12 * row));
+    out.read(reinterpret_cast<char*>(got), 12);
+    const std::size_t b = row % kBlock;
+    ASSERT_EQ(std::memcmp(got, &expected[3 * b], 12), 0) << "row " << row;
+  }
+}
+
+}  // namespace
