@@ -524,8 +524,8 @@ TEST(StreamCli, ChunkOutOfRange) {
 }
 
 // The bound: a 100M-sample NPY file (2.8 GB of float32) evaluates with under 1 GiB
-// resident. BRDFCL_STREAM_SAMPLES overrides the count (sanitizer builds use 10M: their shadow
-// memory and quarantine are not the tool's own). Rows repeat a block of random samples, so a
+// resident. BRDFCL_STREAM_SAMPLES overrides the count. Sanitizer builds check 10M samples for
+// correctness only: their shadow memory and quarantine are not the tool's own. Rows repeat a block of random samples, so a
 // spot check of rows anywhere in the output can be computed from the block.
 TEST(StreamCli, HundredMillionSamplesStayUnderOneGiB) {
 #if defined(__SANITIZE_ADDRESS__)
@@ -556,7 +556,9 @@ TEST(StreamCli, HundredMillionSamplesStayUnderOneGiB) {
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   ASSERT_EQ(r.status, 0) << r.describe();
   std::printf("[ stream   ] %zu samples in %.1f s, peak resident %.0f MiB\n", n, seconds, r.maxRssKiB / 1024.0);
+#if !defined(__SANITIZE_ADDRESS__)  // ASan's shadow memory and quarantine alone reach ~1 GiB here
   EXPECT_LT(r.maxRssKiB, 1024 * 1024) << "peak resident set of `brdfcl eval` on " << n << " samples";
+#endif
 
   struct stat st {};
   ASSERT_EQ(::stat(dir.path("out.npy").c_str(), &st), 0);

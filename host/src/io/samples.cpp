@@ -242,6 +242,7 @@ std::size_t countFields(std::string_view line) {
 }
 
 const char* findNewline(const char* p, const char* end) {
+  if (p >= end) return nullptr;  // memchr must not see the null data() of an empty buffer
   return static_cast<const char*>(std::memchr(p, '\n', static_cast<std::size_t>(end - p)));
 }
 
