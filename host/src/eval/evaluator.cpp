@@ -4,6 +4,7 @@
 #include "brdfcl/evaluator.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <cstring>
 
@@ -52,6 +53,18 @@ T* allocPages(std::size_t count) {
   return static_cast<T*>(p);
 }
 
+// NaN or an infinity in a direction would come back as NaN f: the file readers reject them,
+// and so does the library for directions built in memory.
+void checkDirections(const Samples& s) {
+  static const char* const kNames[6] = {"Lx", "Ly", "Lz", "Vx", "Vy", "Vz"};
+  for (std::size_t i = 0; i < s.size(); ++i)
+    for (int k = 0; k < 6; ++k) {
+      const float v = k < 3 ? s.L[3 * i + k] : s.V[3 * i + k - 3];
+      if (!std::isfinite(v))
+        throw Error(fmt::format("sample {}: {} is not finite: {}", i, kNames[k], std::isnan(v) ? "nan" : v > 0 ? "inf" : "-inf"));
+    }
+}
+
 // Lays samples [first, first + count) out as the 6 planes the kernels read.
 void fillDirectionPlanes(const Samples& s, std::size_t first, std::size_t count, std::size_t stride, float* planes) {
   for (std::size_t i = 0; i < count; ++i) {
@@ -90,6 +103,7 @@ struct Evaluator::Batch {
 
 Evaluator::Batch Evaluator::prepare(const std::vector<MaterialParams>& materials) {
   if (materials.empty()) throw Error("no materials to evaluate");
+  for (std::size_t i = 0; i < materials.size(); ++i) checkMaterial(materials[i], i);
   const auto features = featuresOf(materials);
   Batch b;
   for (const auto& m : materials) b.packed.push_back(packMaterial(m));
@@ -218,6 +232,7 @@ std::vector<float> Evaluator::evaluate(const std::vector<MaterialParams>& materi
     if (samples.material[i] >= materials.size())
       throw Error(fmt::format("sample {}: material index {} out of range ({} materials)", i, samples.material[i],
                               materials.size()));
+  checkDirections(samples);
   std::vector<float> rgb(3 * n);
   if (n == 0) return rgb;
 
@@ -251,6 +266,7 @@ std::vector<float> Evaluator::evaluate(const std::vector<MaterialParams>& materi
 
 std::vector<float> Evaluator::evaluateGrid(const std::vector<MaterialParams>& materials, const Samples& samples) {
   const std::size_t n = samples.size(), nm = materials.size();
+  checkDirections(samples);
   std::vector<float> rgb(3 * n * nm);
   if (n == 0 || nm == 0) return rgb;
 
