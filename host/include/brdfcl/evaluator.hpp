@@ -119,6 +119,8 @@ class SoaBatch {
   void run();
 
  private:
+  void release();  // frees the device buffers, then the host planes they wrap
+
   Evaluator& ev_;
   std::size_t capacity_ = 0, count_ = 0;
   std::size_t allocated_ = 0;  // floats a plane holds: capacity padded to whole work-groups

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
 #include <cstring>
 
@@ -46,9 +47,14 @@ std::size_t chunkSize(const Runtime& rt, std::size_t bytesPerSample) {
 
 template <class T>
 T* allocPages(std::size_t count) {
-  const std::size_t bytes = roundUp(std::max<std::size_t>(count * sizeof(T), 1), kPage);
-  void* p = std::aligned_alloc(kPage, bytes);
-  if (!p) throw Error(fmt::format("out of host memory allocating {} MiB for a batch", bytes >> 20));
+  // A count whose byte size does not fit size_t can never be allocated; checking first also
+  // keeps count * sizeof(T) from wrapping round to a small allocation.
+  const bool representable = count <= (SIZE_MAX - kPage) / sizeof(T);
+  const std::size_t bytes = representable ? roundUp(std::max<std::size_t>(count * sizeof(T), 1), kPage) : 0;
+  void* p = representable ? std::aligned_alloc(kPage, bytes) : nullptr;
+  if (!p)
+    throw Error(fmt::format("out of host memory allocating {:.0f} MiB for a batch",
+                            std::ceil(double(count) * sizeof(T) / double(1 << 20))));
   std::memset(p, 0, bytes);  // zero directions lie below the horizon: padding lanes give f = 0
   return static_cast<T*>(p);
 }
@@ -133,6 +139,8 @@ struct SoaBatch::Device {
 
 SoaBatch::SoaBatch(Evaluator& evaluator, const std::vector<MaterialParams>& materials, std::size_t capacity)
     : ev_(evaluator), capacity_(roundUp(std::max<std::size_t>(capacity, 1), kLanes)), count_(capacity) {
+  if (capacity > SIZE_MAX / 2)  // rounding up would wrap round: no such batch fits in memory
+    throw Error(fmt::format("out of host memory allocating {:.0f} MiB for a batch", double(capacity) * 4 / double(1 << 20)));
   device_ = std::make_unique<Device>();
   device_->batch = ev_.prepare(materials);
   packed_ = device_->batch.packed;
@@ -146,10 +154,16 @@ SoaBatch::SoaBatch(Evaluator& evaluator, const std::vector<MaterialParams>& mate
     rethrowOpenCL("creating the batch kernel");
   }
   // Planes are padded (with zeros: f = 0) to whole work-groups, so a launch rounded up to the
-  // work-group size never reads past them.
+  // work-group size never reads past them. A constructor that throws runs no destructor, so a
+  // failure part-way frees what was already allocated.
   allocated_ = roundUp(capacity_, kLanes * device_->local);
-  for (auto& p : planes_) p = allocPages<float>(allocated_);
-  index_ = allocPages<std::uint32_t>(allocated_);
+  try {
+    for (auto& p : planes_) p = allocPages<float>(allocated_);
+    index_ = allocPages<std::uint32_t>(allocated_);
+  } catch (...) {
+    release();
+    throw;
+  }
   try {
     const auto& ctx = ev_.rt_.context();
     auto& d = *device_;
@@ -165,14 +179,21 @@ SoaBatch::SoaBatch(Evaluator& evaluator, const std::vector<MaterialParams>& mate
     d.kernel.setArg(arg++, d.batch.tableSize);
     for (int k = 6; k < 9; ++k) d.kernel.setArg(arg++, d.planes[k]);
   } catch (const cl::Error&) {
+    release();
     rethrowOpenCL("allocating a sample batch");
   }
 }
 
-SoaBatch::~SoaBatch() {
+SoaBatch::~SoaBatch() { release(); }
+
+void SoaBatch::release() {
   device_.reset();  // release the buffers before the memory they wrap
-  for (auto* p : planes_) std::free(p);
+  for (auto*& p : planes_) {
+    std::free(p);
+    p = nullptr;
+  }
   std::free(index_);
+  index_ = nullptr;
 }
 
 void SoaBatch::setCount(std::size_t count) {
