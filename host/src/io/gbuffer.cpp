@@ -189,7 +189,7 @@ void writeGBuffer(const std::string& path, const GBuffer& g, bool half) {
     } catch (const Error&) {
       throw;
     } catch (const std::exception& e) {
-      throw Error("cannot write '" + shown + "': " + printable(e.what(), 200));
+      throw Error("cannot write '" + shown + "': " + printable(detail::withUserPath(e.what(), tmp, path), 200));
     }
   });
 }
