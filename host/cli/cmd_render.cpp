@@ -56,6 +56,7 @@ void addRenderCommands(CLI::App& app) {
     cmd->callback([a] {
       int w, h;
       parseSize(a->size, w, h);
+      if (lowerExtension(a->out) != ".exr") throw Error(fmt::format("--out '{}' must end in .exr", a->out));
       const Scene scene = builtinScene(a->scene);
       Runtime rt(a->device);
       writeGBuffer(a->out, renderSpheresGBuffer(rt, scene, w, h));

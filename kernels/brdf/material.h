@@ -104,12 +104,17 @@ BRDF_FN realw sheen_dv(realw hxy2, realw hn2, realw NdotL, realw NdotV, realw al
 /* Half-vector components with the degenerate L = -V case mapped to H = N. */
 BRDF_FN vec3w half_vector(vec3w L, vec3w V) {
   vec3w h = {L.x + V.x, L.y + V.y, L.z + V.z};
+  realw h2 = h.x * h.x + h.y * h.y + h.z * h.z;
   /* L = -V with both within ~1e-15 of the horizon: |L + V|^2 underflows and H is undefined.
      Taking H = N there keeps f finite (documented clamp; such pairs sit far outside the domain). */
-  intw degenerate = (h.x * h.x + h.y * h.y + h.z * h.z) < 1.0e-30f;
-  h.x = select(h.x, (realw)(0.0f), degenerate);
-  h.y = select(h.y, (realw)(0.0f), degenerate);
-  h.z = select(h.z, (realw)(1.0f), degenerate);
+  intw degenerate = h2 < 1.0e-30f;
+  /* Nearly opposite L and V: the D terms square |h|^2 twice, which underflows to 0/0 (NaN f, e.g.
+     at grazing L, V mirrored about N with N.L = N.V = 1e-12). Every consumer of h is homogeneous
+     of degree 0 in it, so an exact power-of-two rescale (2^40) changes nothing else. */
+  realw scale = select((realw)(1.0f), (realw)(1099511627776.0f), h2 < 1.0e-12f);
+  h.x = select(h.x * scale, (realw)(0.0f), degenerate);
+  h.y = select(h.y * scale, (realw)(0.0f), degenerate);
+  h.z = select(h.z * scale, (realw)(1.0f), degenerate);
   return h;
 }
 

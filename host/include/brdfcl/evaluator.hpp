@@ -54,9 +54,17 @@ class Evaluator {
   const EvalOptions& options() const { return options_; }
 
   // One result per sample; samples.material indexes `materials`. Returns rgb, 3 floats a sample.
+  // L and V are expected as unit vectors (readSamples normalizes them); a direction at or below
+  // the horizon gives f = 0. Throws brdfcl::Error (exit code 2), naming the material or sample:
+  //   "material 3: roughness must be a number in [0, 1], got nan" -- any field outside the glTF
+  //     domain readMaterials enforces ([0, 1]; >= 0 for draftIntensity and emissive; finite for
+  //     anisotropyRotation), NaN and infinities included;
+  //   "sample 7: Vz is not finite: inf" -- a NaN or infinite direction component;
+  //   "sample 7: material index 5 out of range (2 materials)".
   std::vector<float> evaluate(const std::vector<MaterialParams>& materials, const Samples& samples);
 
   // Every material x every direction pair, material-major. samples.material is ignored.
+  // Materials and directions are checked as in evaluate().
   std::vector<float> evaluateGrid(const std::vector<MaterialParams>& materials, const Samples& samples);
   // Only the rows of materials [firstMaterial, firstMaterial + materialCount), bit-identical to
   // those rows of the whole grid. (The kernel is specialized for the layers `materials` use, so
@@ -90,7 +98,10 @@ class SoaBatch {
  public:
   static constexpr std::size_t kLanes = 16;  // BRDFCL_W of the batch kernels
 
-  // Room for `capacity` samples of `materials` (copied and packed now).
+  // Room for `capacity` samples of `materials` (copied, checked as evaluate() checks them, and
+  // packed now). Throws "no materials to evaluate" for an empty list and "out of host memory
+  // allocating <n> MiB for a batch" when the planes cannot be allocated. The planes themselves
+  // are not checked: this is the throughput path, so keep NaN and infinities out of them.
   SoaBatch(Evaluator& evaluator, const std::vector<MaterialParams>& materials, std::size_t capacity);
   ~SoaBatch();
   SoaBatch(const SoaBatch&) = delete;
@@ -122,6 +133,8 @@ class SoaBatch {
   void evaluate(const Samples& samples, float* rgb);
 
  private:
+  void release();  // frees the device buffers, then the host planes they wrap
+
   Evaluator& ev_;
   std::size_t capacity_ = 0, count_ = 0;
   std::size_t allocated_ = 0;  // floats a plane holds: capacity padded to whole work-groups

@@ -40,7 +40,8 @@ struct GBuffer {
 // one-line brdfcl::Error starting with the file name for: a file that is missing, not EXR,
 // multi-part, deep or truncated; a data window other than the display window; a missing
 // required channel; an incomplete vector (T.X without T.Z); a used channel with x/y sampling
-// other than 1 or of type UINT; several Blender layers with the same pass.
+// other than 1 or of type UINT; several Blender layers with the same pass; a NaN or an infinity
+// in a used channel.
 GBuffer readGBuffer(const std::string& path);
 
 // Writes every non-empty channel under its canonical name (HALF when `half`, else FLOAT; ZIP

@@ -9,6 +9,11 @@ namespace brdfcl {
 
 using Rgb = std::array<float, 3>;
 
+// The draft's intensityFactor has no maximum in 001, but the sheen lobe reaches intensity x 2e5
+// (Charlie D at the alpha clamp times Ashikhmin V at the cosine floor): far above 1e30 f overflows
+// float, and inf x 0 in the clearcoat layering then gives NaN. Larger values are rejected.
+constexpr float kMaxDraftIntensity = 1e30f;
+
 // One glTF 2.0 material: pbrMetallicRoughness + KHR_materials_sheen (ratified or draft keys)
 // + KHR_materials_clearcoat + KHR_materials_anisotropy. Defaults are the specs' defaults.
 struct MaterialParams {
@@ -23,6 +28,7 @@ struct MaterialParams {
 
   // Experimental draft (001_1d237f8840bf9d13.txt): used when the extension object has the
   // draft keys intensityFactor/colorFactor. Sheen roughness is then the material roughness.
+  // draftIntensity lies in [0, kMaxDraftIntensity].
   bool draftSheen = false;
   float draftIntensity = 1.0f;
   Rgb draftColor{1.0f, 1.0f, 1.0f};

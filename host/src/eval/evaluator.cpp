@@ -4,6 +4,8 @@
 #include "brdfcl/evaluator.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <cstdint>
 #include <cstdlib>
 #include <cstring>
 
@@ -45,11 +47,28 @@ std::size_t chunkSize(const Runtime& rt, std::size_t bytesPerSample) {
 
 template <class T>
 T* allocPages(std::size_t count) {
-  const std::size_t bytes = roundUp(std::max<std::size_t>(count * sizeof(T), 1), kPage);
-  void* p = std::aligned_alloc(kPage, bytes);
-  if (!p) throw Error(fmt::format("out of host memory allocating {} MiB for a batch", bytes >> 20));
+  // A count whose byte size does not fit size_t can never be allocated; checking first also
+  // keeps count * sizeof(T) from wrapping round to a small allocation.
+  const bool representable = count <= (SIZE_MAX - kPage) / sizeof(T);
+  const std::size_t bytes = representable ? roundUp(std::max<std::size_t>(count * sizeof(T), 1), kPage) : 0;
+  void* p = representable ? std::aligned_alloc(kPage, bytes) : nullptr;
+  if (!p)
+    throw Error(fmt::format("out of host memory allocating {:.0f} MiB for a batch",
+                            std::ceil(double(count) * sizeof(T) / double(1 << 20))));
   std::memset(p, 0, bytes);  // zero directions lie below the horizon: padding lanes give f = 0
   return static_cast<T*>(p);
+}
+
+// NaN or an infinity in a direction would come back as NaN f: the file readers reject them,
+// and so does the library for directions built in memory.
+void checkDirections(const Samples& s) {
+  static const char* const kNames[6] = {"Lx", "Ly", "Lz", "Vx", "Vy", "Vz"};
+  for (std::size_t i = 0; i < s.size(); ++i)
+    for (int k = 0; k < 6; ++k) {
+      const float v = k < 3 ? s.L[3 * i + k] : s.V[3 * i + k - 3];
+      if (!std::isfinite(v))
+        throw Error(fmt::format("sample {}: {} is not finite: {}", i, kNames[k], std::isnan(v) ? "nan" : v > 0 ? "inf" : "-inf"));
+    }
 }
 
 // Lays samples [first, first + count) out as the 6 planes the kernels read.
@@ -90,6 +109,7 @@ struct Evaluator::Batch {
 
 Evaluator::Batch Evaluator::prepare(const std::vector<MaterialParams>& materials) {
   if (materials.empty()) throw Error("no materials to evaluate");
+  for (std::size_t i = 0; i < materials.size(); ++i) checkMaterial(materials[i], i);
   const auto features = featuresOf(materials);
   Batch b;
   for (const auto& m : materials) b.packed.push_back(packMaterial(m));
@@ -119,6 +139,8 @@ struct SoaBatch::Device {
 
 SoaBatch::SoaBatch(Evaluator& evaluator, const std::vector<MaterialParams>& materials, std::size_t capacity)
     : ev_(evaluator), capacity_(roundUp(std::max<std::size_t>(capacity, 1), kLanes)), count_(capacity) {
+  if (capacity > SIZE_MAX / 2)  // rounding up would wrap round: no such batch fits in memory
+    throw Error(fmt::format("out of host memory allocating {:.0f} MiB for a batch", double(capacity) * 4 / double(1 << 20)));
   device_ = std::make_unique<Device>();
   device_->batch = ev_.prepare(materials);
   packed_ = device_->batch.packed;
@@ -132,10 +154,16 @@ SoaBatch::SoaBatch(Evaluator& evaluator, const std::vector<MaterialParams>& mate
     rethrowOpenCL("creating the batch kernel");
   }
   // Planes are padded (with zeros: f = 0) to whole work-groups, so a launch rounded up to the
-  // work-group size never reads past them.
+  // work-group size never reads past them. A constructor that throws runs no destructor, so a
+  // failure part-way frees what was already allocated.
   allocated_ = roundUp(capacity_, kLanes * device_->local);
-  for (auto& p : planes_) p = allocPages<float>(allocated_);
-  index_ = allocPages<std::uint32_t>(allocated_);
+  try {
+    for (auto& p : planes_) p = allocPages<float>(allocated_);
+    index_ = allocPages<std::uint32_t>(allocated_);
+  } catch (...) {
+    release();
+    throw;
+  }
   try {
     const auto& ctx = ev_.rt_.context();
     auto& d = *device_;
@@ -151,14 +179,21 @@ SoaBatch::SoaBatch(Evaluator& evaluator, const std::vector<MaterialParams>& mate
     d.kernel.setArg(arg++, d.batch.tableSize);
     for (int k = 6; k < 9; ++k) d.kernel.setArg(arg++, d.planes[k]);
   } catch (const cl::Error&) {
+    release();
     rethrowOpenCL("allocating a sample batch");
   }
 }
 
-SoaBatch::~SoaBatch() {
+SoaBatch::~SoaBatch() { release(); }
+
+void SoaBatch::release() {
   device_.reset();  // release the buffers before the memory they wrap
-  for (auto* p : planes_) std::free(p);
+  for (auto*& p : planes_) {
+    std::free(p);
+    p = nullptr;
+  }
   std::free(index_);
+  index_ = nullptr;
 }
 
 void SoaBatch::setCount(std::size_t count) {
@@ -229,6 +264,7 @@ void SoaBatch::evaluate(const Samples& samples, float* rgb) {
     if (samples.material[i] >= packed_.size())
       throw Error(fmt::format("sample {}: material index {} out of range ({} materials)", i, samples.material[i],
                               packed_.size()));
+  checkDirections(samples);
   const std::size_t chunk = capacity();
   for (std::size_t first = 0; first < n; first += chunk) {
     const std::size_t count = std::min(chunk, n - first);
@@ -266,6 +302,7 @@ std::vector<float> Evaluator::evaluateGrid(const std::vector<MaterialParams>& ma
     throw Error(fmt::format("internal: materials [{}, {}) of {}", firstMaterial, firstMaterial + materialCount,
                             materials.size()), 3);
   const std::size_t n = samples.size(), nm = materialCount;
+  checkDirections(samples);
   std::vector<float> rgb(3 * n * nm);
   if (n == 0 || nm == 0) return rgb;
 

@@ -6,8 +6,8 @@
 #include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <exception>
-#include <fstream>
 
 #include <OpenEXR/ImfChannelList.h>
 #include <OpenEXR/ImfFrameBuffer.h>
@@ -20,6 +20,8 @@
 #include "brdfcl/evaluator.hpp"
 #include "brdfcl/io.hpp"
 #include "eval/quadrature.hpp"
+#include "io/files.hpp"
+#include "io/messages.hpp"
 #include "eval/sheen_albedo_bake.hpp"
 #include "model/pack.hpp"
 
@@ -115,7 +117,8 @@ std::string describe(const Lut& lut) {
       toString(lut.kind), lut.size, lut.size, lut.channels, what);
 }
 
-void writeExr(const Lut& lut, const std::string& tmp) {
+// Messages name the user's path (`shown`), never the temporary beside it.
+void writeExr(const Lut& lut, const std::string& tmp, const std::string& path, const std::string& shown) {
   try {
     const int n = int(lut.size);
     Imf::Header header(n, n);
@@ -137,14 +140,14 @@ void writeExr(const Lut& lut, const std::string& tmp) {
   } catch (const Error&) {
     throw;
   } catch (const std::exception& e) {
-    throw Error(fmt::format("cannot write '{}': {}", tmp, e.what()));
+    throw Error(fmt::format("cannot write '{}': {}", shown,
+                            detail::printable(detail::withUserPath(e.what(), tmp, path), 200, ' ')));
   }
 }
 
-void writeText(const std::string& tmp, const std::string& text) {
-  std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-  out.write(text.data(), std::streamsize(text.size()));
-  if (!out.flush()) throw Error("cannot write '" + tmp + "'");
+void writeText(const std::string& tmp, const std::string& text, const std::string& shown) {
+  if (const int err = detail::writeWholeFile(tmp, text.data(), text.size()))
+    throw Error("cannot write '" + shown + "': " + std::strerror(err));
 }
 
 std::string csvText(const Lut& lut) {
@@ -193,7 +196,7 @@ LutKind parseLutKind(const std::string& s) {
   if (s == "sheen-e") return LutKind::SheenE;
   if (s == "ggx-dfg") return LutKind::GgxDfg;
   if (s == "charlie-dfg") return LutKind::CharlieDfg;
-  throw Error("unknown --kind value '" + s + "'; use sheen-e, ggx-dfg or charlie-dfg");
+  throw Error("unknown --kind value '" + detail::printable(s) + "'; use sheen-e, ggx-dfg or charlie-dfg");
 }
 
 const char* toString(LutKind k) {
@@ -232,19 +235,20 @@ Lut bakeLut(Runtime& rt, LutKind kind, std::size_t size, const EvalOptions& o, i
 void checkLutPath(const std::string& path) {
   const auto ext = lowerExtension(path);
   if (ext != ".exr" && ext != ".csv" && ext != ".h")
-    throw Error("cannot write LUT '" + path + "': unknown extension; use .exr, .csv or .h");
+    throw Error("cannot write LUT '" + detail::printable(path, 300) + "': unknown extension; use .exr, .csv or .h");
 }
 
 void writeLut(const Lut& lut, const std::string& path) {
   checkLutPath(path);
   const auto ext = lowerExtension(path);
+  const std::string shown = detail::printable(path, 300);
   writeAtomically(path, [&](const std::string& tmp) {
     if (ext == ".exr")
-      writeExr(lut, tmp);
+      writeExr(lut, tmp, path, shown);
     else if (ext == ".csv")
-      writeText(tmp, csvText(lut));
+      writeText(tmp, csvText(lut), shown);
     else
-      writeText(tmp, headerText(lut));
+      writeText(tmp, headerText(lut), shown);
   });
 }
 

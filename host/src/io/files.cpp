@@ -42,4 +42,23 @@ int readWholeFile(const std::string& path, std::string& out) {
   return 0;
 }
 
+// POSIX for the same reason: a stream's failure does not say whether the disk was full.
+int writeWholeFile(const std::string& path, const void* data, std::size_t size) {
+  const int fd = ::open(path.c_str(), O_WRONLY | O_TRUNC | O_CLOEXEC);
+  if (fd < 0) return errno;
+  const char* p = static_cast<const char*>(data);
+  while (size > 0) {
+    const ssize_t n = ::write(fd, p, size);
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) {
+      const int err = errno;
+      ::close(fd);
+      return err;
+    }
+    p += n;
+    size -= static_cast<std::size_t>(n);
+  }
+  return ::close(fd) == 0 ? 0 : errno;
+}
+
 }  // namespace brdfcl::detail

@@ -10,6 +10,7 @@
 #include <ImfOutputFile.h>
 #include <half.h>
 #include <algorithm>
+#include <cmath>
 #include <exception>
 #include <iterator>
 #include <set>
@@ -76,6 +77,7 @@ GBuffer readGBuffer(const std::string& path) {
     std::size_t firstPlane;
   };
   std::vector<Source> sources;
+  std::vector<std::string> chosenNames;  // as the file spells them, one per plane read
 
   auto choose = [&](const std::vector<ExrChannelInfo>& channels) {
     std::set<std::string> have;
@@ -120,12 +122,24 @@ GBuffer readGBuffer(const std::string& path) {
       sources.push_back({&f, chosen.size()});
       chosen.insert(chosen.end(), names.begin(), names.end());
     }
+    chosenNames = chosen;
     return chosen;
   };
 
   GBuffer g;
   std::vector<std::vector<float>> planes = readExrChannels(path, choose, g.width, g.height);
   const std::size_t n = g.pixelCount();
+  // Checked here, where the file can be named, rather than only when shading starts (after the
+  // environment is prepared, which takes seconds).
+  for (std::size_t p = 0; p < planes.size(); ++p)
+    for (std::size_t i = 0; i < n; ++i)
+      if (!std::isfinite(planes[p][i])) {
+        const float v = planes[p][i];
+        throw Error(shown + ": pixel (" + std::to_string(i % std::size_t(g.width)) + ", " +
+                    std::to_string(i / std::size_t(g.width)) + ") has a non-finite value (" +
+                    (std::isnan(v) ? "nan" : v > 0 ? "inf" : "-inf") + ") in channel '" + printable(chosenNames[p]) +
+                    "'; fix the renderer's output");
+      }
   for (const Source& s : sources) {
     const std::size_t k = std::max<std::size_t>(1, std::char_traits<char>::length(s.field->suffixes));
     std::vector<float>& out = g.*(s.field->member);
@@ -189,7 +203,7 @@ void writeGBuffer(const std::string& path, const GBuffer& g, bool half) {
     } catch (const Error&) {
       throw;
     } catch (const std::exception& e) {
-      throw Error("cannot write '" + shown + "': " + printable(e.what(), 200));
+      throw Error("cannot write '" + shown + "': " + printable(detail::withUserPath(e.what(), tmp, path), 200));
     }
   });
 }

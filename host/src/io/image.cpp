@@ -14,9 +14,11 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <cstring>
 #include <exception>
 #include <limits>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -25,6 +27,7 @@
 #define STB_IMAGE_WRITE_IMPLEMENTATION
 #include <stb/stb_image_write.h>
 
+#include "io/files.hpp"
 #include "io/messages.hpp"
 #include "brdfcl/error.hpp"
 #include "brdfcl/image.hpp"
@@ -168,7 +171,7 @@ void writeExrRgb(const std::string& path, int width, int height, const std::vect
     } catch (const Error&) {
       throw;
     } catch (const std::exception& e) {
-      throw Error("cannot write '" + shown + "': " + printable(e.what(), 200));
+      throw Error("cannot write '" + shown + "': " + printable(detail::withUserPath(e.what(), tmp, path), 200));
     }
   });
 }
@@ -255,9 +258,15 @@ void writePng(const std::string& path, int width, int height, const std::vector<
     for (int c = 0; c < 3; ++c) pixels[i + c] = encodeSrgb8(t[c]);
   }
   const std::string shown = printable(path);
+  // Encoded in memory and written here: stbi_write_png ignores the results of fwrite and fclose,
+  // so on a full disk it reported success and a truncated PNG was renamed into place.
+  int length = 0;
+  std::unique_ptr<unsigned char, void (*)(void*)> png(
+      stbi_write_png_to_mem(pixels.data(), 3 * width, width, height, 3, &length), std::free);
+  if (!png) throw Error("cannot write '" + shown + "': the PNG encoder failed (out of memory?)");
   writeAtomically(path, [&](const std::string& tmp) {
-    if (!stbi_write_png(tmp.c_str(), width, height, 3, pixels.data(), 3 * width))
-      throw Error("cannot write '" + shown + "': the PNG encoder failed (disk full or image too large?)");
+    if (const int err = detail::writeWholeFile(tmp, png.get(), static_cast<std::size_t>(length)))
+      throw Error("cannot write '" + shown + "': " + std::strerror(err));
   });
 }
 

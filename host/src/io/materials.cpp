@@ -34,13 +34,15 @@ std::string withoutTag(std::string what) { return detail::withoutJsonTag(std::mo
 
 using Warn = std::function<void(const std::string&)>;
 
-enum class Range { Unit, NonNegative, Finite };
+// Intensity: the draft's intensityFactor, >= 0 and at most kMaxDraftIntensity.
+enum class Range { Unit, NonNegative, Intensity, Finite };
 
 const char* expectedNumber(Range r) {
   switch (r) {
     case Range::Unit:
       return "a number in [0, 1]";
     case Range::NonNegative:
+    case Range::Intensity:
       return "a number >= 0";
     case Range::Finite:
       break;
@@ -109,10 +111,13 @@ class MaterialReader {
     const double d = v.get<double>();
     bool ok = std::isfinite(d);
     if (ok && range == Range::Unit) ok = d >= 0.0 && d <= 1.0;
-    if (ok && range == Range::NonNegative) ok = d >= 0.0;
+    if (ok && (range == Range::NonNegative || range == Range::Intensity)) ok = d >= 0.0;
     if (!ok) fail(path, std::string("expected ") + expected + ", got " + formatNumber(d));
     if (std::fabs(d) > std::numeric_limits<float>::max())
       fail(path, std::string("expected ") + expected + ", got " + formatNumber(d) + " (too large for float)");
+    if (range == Range::Intensity && static_cast<float>(d) > kMaxDraftIntensity)
+      fail(path, std::string("expected ") + expected + ", got " + formatNumber(d) +
+                     " (at most 1e+30: f would overflow float)");
     return static_cast<float>(d);
   }
 
@@ -221,7 +226,7 @@ class MaterialReader {
         fail(path, "has both intensityFactor and sheenFactor (the draft's two names for one value); keep one");
       for (const char* key : {"intensityFactor", "sheenFactor"})
         optional(s, key, path,
-                 [&](const json& v, const std::string& at) { p.draftIntensity = number(v, at, Range::NonNegative); });
+                 [&](const json& v, const std::string& at) { p.draftIntensity = number(v, at, Range::Intensity); });
       optional(s, "colorFactor", path,
                [&](const json& v, const std::string& at) { p.draftColor = color(v, at, 3, Range::Unit); });
       noteTextures(s, {"colorIntensityTexture"}, textures);

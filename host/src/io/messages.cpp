@@ -52,6 +52,13 @@ std::string describeJson(const nlohmann::json& v) {
   }
 }
 
+std::string withUserPath(std::string what, const std::string& tmpPath, const std::string& userPath) {
+  if (tmpPath.empty()) return what;
+  for (auto at = what.find(tmpPath); at != std::string::npos; at = what.find(tmpPath, at + userPath.size()))
+    what.replace(at, tmpPath.size(), userPath);
+  return what;
+}
+
 std::string withoutJsonTag(std::string what) {
   const auto tag = what.find("] ");
   if (what.rfind("[json.exception", 0) == 0 && tag != std::string::npos) what.erase(0, tag + 2);

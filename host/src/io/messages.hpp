@@ -18,6 +18,10 @@ std::string formatNumber(double d);
 // What a JSON value is, for "got ..." in messages: a number, string "x", true, null, an array of 3 elements.
 std::string describeJson(const nlohmann::json& v);
 
+// A writer's failure text (OpenEXR names the file it was writing) with the temporary file beside
+// the output replaced by the output's own path: the temporary no longer exists when the user reads it.
+std::string withUserPath(std::string what, const std::string& tmpPath, const std::string& userPath);
+
 // nlohmann's parse error without its "[json.exception.parse_error.101] " tag.
 std::string withoutJsonTag(std::string what);
 

@@ -5,11 +5,14 @@
 #include "kernels/common/material_pack.h"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <cstddef>
 #include <type_traits>
 
 #include <fmt/format.h>
+
+#include "brdfcl/error.hpp"
 
 namespace brdfcl {
 
@@ -23,7 +26,49 @@ static_assert(offsetof(brdfcl_material, clearcoat_alpha) == 68);
 
 namespace {
 float max3(const Rgb& c) { return std::max({c[0], c[1], c[2]}); }
+
+// The shortest text that reads back as the same float ("0.1", not 0.100000001490116).
+std::string floatText(float v) {
+  if (std::isnan(v)) return "nan";
+  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
+  char buf[32];
+  const auto r = std::to_chars(buf, buf + sizeof buf, v);
+  return std::string(buf, r.ptr);
+}
+
+enum class Domain { Unit, NonNegative, Intensity, Finite };
+
+// The same domains and wording as readMaterials (io/materials.cpp).
+void checkField(float v, Domain d, std::size_t index, const std::string& field) {
+  bool ok = std::isfinite(v);
+  if (ok && d == Domain::Unit) ok = v >= 0.0f && v <= 1.0f;
+  if (ok && (d == Domain::NonNegative || d == Domain::Intensity)) ok = v >= 0.0f;
+  const char* expected = d == Domain::Unit ? "a number in [0, 1]" : d == Domain::Finite ? "a finite number" : "a number >= 0";
+  if (!ok) throw Error(fmt::format("material {}: {} must be {}, got {}", index, field, expected, floatText(v)));
+  if (d == Domain::Intensity && v > kMaxDraftIntensity)
+    throw Error(fmt::format("material {}: {} must be {}, got {} (at most 1e+30: f would overflow float)", index, field,
+                            expected, floatText(v)));
+}
+
+void checkColor(const Rgb& c, Domain d, std::size_t index, const char* field) {
+  for (int i = 0; i < 3; ++i) checkField(c[i], d, index, fmt::format("{}[{}]", field, i));
+}
 }  // namespace
+
+void checkMaterial(const MaterialParams& m, std::size_t index) {
+  checkColor(m.baseColor, Domain::Unit, index, "baseColor");
+  checkField(m.metallic, Domain::Unit, index, "metallic");
+  checkField(m.roughness, Domain::Unit, index, "roughness");
+  checkColor(m.sheenColor, Domain::Unit, index, "sheenColor");
+  checkField(m.sheenRoughness, Domain::Unit, index, "sheenRoughness");
+  checkField(m.draftIntensity, Domain::Intensity, index, "draftIntensity");
+  checkColor(m.draftColor, Domain::Unit, index, "draftColor");
+  checkField(m.clearcoat, Domain::Unit, index, "clearcoat");
+  checkField(m.clearcoatRoughness, Domain::Unit, index, "clearcoatRoughness");
+  checkField(m.anisotropyStrength, Domain::Unit, index, "anisotropyStrength");
+  checkField(m.anisotropyRotation, Domain::Finite, index, "anisotropyRotation");
+  checkColor(m.emissive, Domain::NonNegative, index, "emissive");
+}
 
 brdfcl_material packMaterial(const MaterialParams& m) {
   brdfcl_material_params q{};

@@ -1,6 +1,7 @@
 // Decoding of glTF material parameters into the packed layout the kernels read
 // (kernels/common/material_layout.h), and the compile-time feature set of a batch.
 #pragma once
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -10,6 +11,11 @@
 namespace brdfcl {
 
 brdfcl_material packMaterial(const MaterialParams& m);
+
+// Throws brdfcl::Error ("material 3: roughness must be a number in [0, 1], got nan") unless
+// every field lies in the glTF schema domain that readMaterials enforces for files: NaN or an
+// infinity would otherwise reach the kernels and come back as NaN f without a word.
+void checkMaterial(const MaterialParams& m, std::size_t index);
 
 // Which layers any material of the batch uses; unused ones are compiled out.
 struct FeatureSet {

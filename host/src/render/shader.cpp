@@ -103,10 +103,20 @@ std::vector<float> gbufferPlanes(const GBuffer& g) {
   put3(g.clearcoatN, GB_CCN_X);
   put1(g.anisotropyStrength, GB_ANISO_STRENGTH);
   put1(g.anisotropyRotation, GB_ANISO_ROTATION);
+  // The canonical EXR channel of each plane (docs/gbuffer.md), in the order of shading_layout.h:
+  // what the user can look up in the file, rather than the plane's number.
+  static const char* const kChannel[] = {
+      "P.X",          "P.Y",          "P.Z",          "N.X",       "N.Y",        "N.Z",
+      "T.X",          "T.Y",          "T.Z",          "baseColor.R", "baseColor.G", "baseColor.B",
+      "metallic",     "roughness",    "mask",         "emissive.R", "emissive.G", "emissive.B",
+      "sheenColor.R", "sheenColor.G", "sheenColor.B", "sheenRoughness", "clearcoat", "clearcoatRoughness",
+      "clearcoatN.X", "clearcoatN.Y", "clearcoatN.Z", "anisotropyStrength", "anisotropyRotation"};
+  static_assert(sizeof kChannel / sizeof kChannel[0] == GB_PLANES);
   for (std::size_t i = 0; i < planes.size(); ++i)
     if (!std::isfinite(planes[i]))
-      throw Error(fmt::format("G-buffer pixel ({}, {}) has a non-finite value in plane {}; fix the renderer's output",
-                              (i % n) % g.width, (i % n) / g.width, i / n));
+      throw Error(fmt::format("G-buffer pixel ({}, {}) has a non-finite value ({}) in channel '{}'; fix the renderer's output",
+                              (i % n) % g.width, (i % n) / g.width, std::isnan(planes[i]) ? "nan" : planes[i] > 0 ? "inf" : "-inf",
+                              kChannel[i / n]));
   return planes;
 }
 
