@@ -656,10 +656,10 @@ TEST_F(Io, NpyHeaderErrors) {
       {npyBytes("<f8", false, "(7, 2)", raw(kRows)), "got (7, 2)"},
       {npyBytes("<f8", false, "(0, 7)", ""), "no samples (shape (0, 7))"},
       {npyBytes("<f4", false, "(1000, 7)", std::string(872 * 28 + 5, '\0')),
-       "truncated: expected 1000 rows of 7 float32, file has 872"},
-      {npyBytes("<f8", false, "(3, 7)", raw(kRows)), "truncated: expected 3 rows of 7 float64, file has 2"},
+       "truncated: expected 1000 rows of 7 float32, file has 872 complete rows"},
+      {npyBytes("<f8", false, "(3, 7)", raw(kRows)), "truncated: expected 3 rows of 7 float64, file has 2 complete rows"},
       {npyBytes("<f8", false, "(18446744073709551615, 7)", raw(kRows)),
-       "truncated: expected 18446744073709551615 rows of 7 float64, file has 2"},
+       "truncated: expected 18446744073709551615 rows of 7 float64, file has 2 complete rows"},
       {npyBytes("", false, "", raw(kRows), 1, "{'descr': '<f8', 'shape': (2, 7)}"),
        "malformed NPY header (needs 'descr', 'fortran_order' and 'shape')"},
       {npyBytes("", false, "", raw(kRows), 1, "{'descr': '<f8', 'fortran_order': maybe, 'shape': (2, 7)}"),
@@ -683,7 +683,7 @@ TEST_F(Io, NpyHeaderErrors) {
   // The exact truncation message the docs quote.
   const std::string p = write("s.npy", npyBytes("<f4", false, "(1000, 7)", std::string(872 * 28, '\0')));
   EXPECT_EQ(errorOf([&] { brdfcl::readSamples(p, 3, false); }),
-            p + ": truncated: expected 1000 rows of 7 float32, file has 872");
+            p + ": truncated: expected 1000 rows of 7 float32, file has 872 complete rows");
 }
 
 TEST_F(Io, NpyRowErrorsUseZeroBasedRows) {

@@ -142,24 +142,20 @@ class RowChecker {
 
  private:
   // Dividing by the largest component first keeps x*x+y*y+z*z from overflowing (1e200) or
-  // underflowing (1e-200) in double: any finite non-zero vector normalizes.
+  // underflowing (1e-200) in double: the scaled length lies in [1, sqrt(3)], so every finite
+  // non-zero vector normalizes and zero length is the only failure.
   static bool normalize(const double* d, float* dst) {
     const double m = std::max({std::fabs(d[0]), std::fabs(d[1]), std::fabs(d[2])});
     if (!(m > 0.0)) return false;
     const double x = d[0] / m, y = d[1] / m, z = d[2] / m;
     const double len = std::sqrt(x * x + y * y + z * z);
-    const float fx = static_cast<float>(x / len), fy = static_cast<float>(y / len), fz = static_cast<float>(z / len);
-    if (!std::isfinite(fx) || !std::isfinite(fy) || !std::isfinite(fz)) return false;
-    dst[0] = fx;
-    dst[1] = fy;
-    dst[2] = fz;
+    dst[0] = static_cast<float>(x / len);
+    dst[1] = static_cast<float>(y / len);
+    dst[2] = static_cast<float>(z / len);
     return true;
   }
 
-  static std::string direction(const char* which, const double* d) {
-    if (d[0] == 0.0 && d[1] == 0.0 && d[2] == 0.0) return std::string(which) + " has zero length";
-    return std::string(which) + " cannot be normalized";
-  }
+  static std::string direction(const char* which, const double*) { return std::string(which) + " has zero length"; }
 
   std::size_t materialCount_;
   bool hasMaterial_;
@@ -747,7 +743,8 @@ class NpyReader {
     const std::size_t rowsPresent = (size - dataStart_) / rowBytes();
     if (h.shape[0] > rowsPresent)  // compared before multiplying: a corrupt shape must not overflow
       throw Error(name_ + ": truncated: expected " + std::to_string(h.shape[0]) + " rows of " + std::to_string(cols_) +
-                  (itemSize_ == 4 ? " float32" : " float64") + ", file has " + std::to_string(rowsPresent));
+                  (itemSize_ == 4 ? " float32" : " float64") + ", file has " + std::to_string(rowsPresent) +
+                  " complete rows");
     rows_ = static_cast<std::size_t>(h.shape[0]);
   }
 
