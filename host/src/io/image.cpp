@@ -1,10 +1,6 @@
 // OpenEXR channel reading with the checks every brdfcl EXR input needs, RGB EXR read/write, and
 // the PNG display pipeline (exposure, Khronos PBR Neutral, sRGB OETF, stb_image_write).
 // Every user-facing failure is one line naming the file; outputs go through writeAtomically.
-#include <fcntl.h>
-#include <sys/stat.h>
-#include <unistd.h>
-
 #include <ImathBox.h>
 #include <ImfChannelList.h>
 #include <ImfFrameBuffer.h>
@@ -12,12 +8,9 @@
 #include <ImfInputFile.h>
 #include <ImfOutputFile.h>
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
 #include <cstdint>
-#include <cstring>
 #include <exception>
-#include <iterator>
 #include <limits>
 #include <stdexcept>
 #include <string>
