@@ -2,8 +2,9 @@
 # Every target first installs missing Debian packages (scripts/install-deps).
 PRESET ?= release
 JOBS ?= $(shell nproc)
+FUZZ_SECONDS ?= 60
 
-.PHONY: deps configure build test test-asan demo bench clean
+.PHONY: deps configure build test test-asan fuzz demo bench clean
 
 deps:
 	@scripts/install-deps
@@ -24,6 +25,13 @@ test-asan: deps
 	@ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
 	  LSAN_OPTIONS=suppressions=$(CURDIR)/tests/sanitizers/lsan.supp:print_suppressions=0 build-asan/bin/brdfcl-tests --gtest_brief=1
 
+# libFuzzer harnesses of the file readers (clang-14, ASan + UBSan, build-fuzz/), FUZZ_SECONDS
+# each; fails on any crash, leak or timeout (artifacts in build-fuzz/artifacts/).
+fuzz: deps
+	@cmake --preset fuzz >/dev/null
+	@cmake --build --preset fuzz -j $(JOBS)
+	@FUZZ_SECONDS=$(FUZZ_SECONDS) tests/fuzz/run
+
 demo: build
 	@build/bin/brdfcl demo
 
@@ -32,4 +40,4 @@ bench: build
 	@build/bin/brdfcl-bench --benchmark_out=out/bench.json --benchmark_out_format=json
 
 clean:
-	@rm -rf build build-asan
+	@rm -rf build build-asan build-fuzz

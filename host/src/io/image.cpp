@@ -1,9 +1,6 @@
 // OpenEXR channel reading with the checks every brdfcl EXR input needs, RGB EXR read/write, and
 // the PNG display pipeline (exposure, Khronos PBR Neutral, sRGB OETF, stb_image_write).
 // Every user-facing failure is one line naming the file; outputs go through writeAtomically.
-#include <fcntl.h>
-#include <unistd.h>
-
 #include <ImathBox.h>
 #include <ImfChannelList.h>
 #include <ImfFrameBuffer.h>
@@ -11,7 +8,6 @@
 #include <ImfInputFile.h>
 #include <ImfOutputFile.h>
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
@@ -28,6 +24,7 @@
 #include <stb/stb_image_write.h>
 
 #include "io/files.hpp"
+#include "io/exr_header.hpp"
 #include "io/messages.hpp"
 #include "brdfcl/error.hpp"
 #include "brdfcl/image.hpp"
@@ -39,45 +36,6 @@ namespace {
 // File names and OpenEXR's messages: longer, with blanks for control characters.
 std::string printable(const std::string& s, std::size_t maxLength = 300) { return detail::printable(s, maxLength, ' '); }
 
-// Guards the allocation below: a corrupt header can claim billions of pixels, and bad_alloc
-// would be an internal error (exit 1) rather than a message about the file.
-constexpr long long kMaxPixels = 1LL << 28;
-
-// OpenEXR version-field flags (OpenEXR file layout, "Version Field").
-constexpr std::uint32_t kNonImageFlag = 0x800;   // deep data
-constexpr std::uint32_t kMultiPartFlag = 0x1000;
-
-// The magic number and version field, read directly: InputFile would silently open part 0 of a
-// multi-part file, and its message for a non-EXR file is less direct than ours.
-void checkPreamble(const std::string& path, const std::string& shown) {
-  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-  if (fd < 0) throw Error("cannot read '" + shown + "': " + std::strerror(errno));
-  unsigned char b[8] = {};
-  std::size_t got = 0;
-  while (got < sizeof b) {
-    const ssize_t n = ::read(fd, b + got, sizeof b - got);
-    if (n < 0 && errno == EINTR) continue;
-    if (n < 0) {
-      const int err = errno;
-      ::close(fd);
-      throw Error("cannot read '" + shown + "': " + std::strerror(err));
-    }
-    if (n == 0) break;
-    got += static_cast<std::size_t>(n);
-  }
-  ::close(fd);
-  const bool magic = got >= 4 && b[0] == 0x76 && b[1] == 0x2f && b[2] == 0x31 && b[3] == 0x01;
-  if (!magic)
-    throw Error(shown + ": not an OpenEXR file (" + (got == 0 ? std::string("the file is empty") : "no EXR magic number") +
-                "); save the image as OpenEXR (.exr)");
-  if (got < 8) throw Error(shown + ": truncated OpenEXR file (ends inside the header); write the file again");
-  const std::uint32_t version = b[4] | (b[5] << 8) | (b[6] << 16) | (static_cast<std::uint32_t>(b[7]) << 24);
-  if (version & kMultiPartFlag)
-    throw Error(shown + ": multi-part OpenEXR file; brdfcl reads single-part files only: save all channels in one part");
-  if (version & kNonImageFlag)
-    throw Error(shown + ": deep OpenEXR file; brdfcl reads flat images only: flatten the deep data");
-}
-
 }  // namespace
 
 std::vector<std::vector<float>> readExrChannels(
@@ -85,7 +43,7 @@ std::vector<std::vector<float>> readExrChannels(
     const std::function<std::vector<std::string>(const std::vector<ExrChannelInfo>&)>& choose, int& width,
     int& height) {
   const std::string shown = printable(path);
-  checkPreamble(path, shown);
+  const detail::ExrLayout layout = detail::checkExrHeader(path, shown);
   try {
     Imf::InputFile in(path.c_str());
     const Imf::Header& header = in.header();
@@ -100,9 +58,7 @@ std::vector<std::vector<float>> readExrChannels(
                   "," + std::to_string(disp.max.y) + "); write the full, uncropped image");
     const long long w = static_cast<long long>(dw.max.x) - dw.min.x + 1;
     const long long h = static_cast<long long>(dw.max.y) - dw.min.y + 1;
-    if (w < 1 || h < 1 || w * h > kMaxPixels)
-      throw Error(shown + ": unsupported image size " + std::to_string(w) + "x" + std::to_string(h) +
-                  " (at most " + std::to_string(kMaxPixels) + " pixels)");
+    if (!detail::exrImageSizeOk(w, h)) throw Error(detail::exrImageSizeError(shown, w, h));
 
     std::vector<ExrChannelInfo> available;
     for (auto it = header.channels().begin(); it != header.channels().end(); ++it)
@@ -124,18 +80,29 @@ std::vector<std::vector<float>> readExrChannels(
     if (!in.isComplete())
       throw Error(shown + ": truncated OpenEXR file (some scan lines or tiles are missing); write the file again");
 
-    const std::size_t n = static_cast<std::size_t>(w * h);
-    std::vector<std::vector<float>> planes(names.size(), std::vector<float>(n));
-    Imf::FrameBuffer fb;
+    // Read in bands of whole chunks, the planes growing as the pixels decode: a small corrupt
+    // file that claims a large image fails in its first chunk, before the memory for the
+    // whole image is taken.
+    constexpr long long kBandPixels = 1 << 20;
+    const long long chunk = std::max(1, layout.chunkLines);
+    const long long bandLines = std::max(1LL, (kBandPixels / w) / chunk) * chunk;
     const std::size_t xStride = sizeof(float), yStride = sizeof(float) * static_cast<std::size_t>(w);
-    for (std::size_t i = 0; i < names.size(); ++i) {
-      // The slice base is the address of pixel (0, 0), which may lie outside the buffer.
-      char* base = reinterpret_cast<char*>(planes[i].data()) - static_cast<std::ptrdiff_t>(dw.min.x) * xStride -
-                   static_cast<std::ptrdiff_t>(dw.min.y) * static_cast<std::ptrdiff_t>(yStride);
-      fb.insert(names[i], Imf::Slice(Imf::FLOAT, base, xStride, yStride));
+    std::vector<std::vector<float>> planes(names.size()), band(names.size());
+    for (long long y0 = dw.min.y; y0 <= dw.max.y; y0 += bandLines) {
+      const long long lines = std::min<long long>(bandLines, dw.max.y - y0 + 1);
+      const std::size_t n = static_cast<std::size_t>(lines * w);
+      Imf::FrameBuffer fb;
+      for (std::size_t i = 0; i < names.size(); ++i) {
+        band[i].resize(n);
+        // Slice::Make offsets the base to pixel (0, 0) in integer arithmetic: that address lies
+        // outside the buffer, and reaching it with pointer arithmetic would be undefined.
+        fb.insert(names[i], Imf::Slice::Make(Imf::FLOAT, band[i].data(), Imath::V2i(dw.min.x, static_cast<int>(y0)),
+                                             w, lines, xStride, yStride));
+      }
+      in.setFrameBuffer(fb);
+      in.readPixels(static_cast<int>(y0), static_cast<int>(y0 + lines - 1));
+      for (std::size_t i = 0; i < names.size(); ++i) planes[i].insert(planes[i].end(), band[i].begin(), band[i].end());
     }
-    in.setFrameBuffer(fb);
-    in.readPixels(dw.min.y, dw.max.y);
     width = static_cast<int>(w);
     height = static_cast<int>(h);
     return planes;
