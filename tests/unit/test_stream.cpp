@@ -243,6 +243,31 @@ TEST(SampleStream, ErrorsNameTheSameLineAsTheWholeFileRead) {
   }
 }
 
+// Found by fuzz_samples_csv (tests/fuzz/corpus/samples_csv/stray_cr_in_blank_lines.csv): a line
+// "\r\t" is not blank (only a '\r' right before the '\n' is dropped), and the look-ahead over
+// the lines after a blank one must use the same rule, or the first error depends on the chunk.
+TEST(SampleStream, AStrayCarriageReturnMakesALineNonBlankWhateverTheChunk) {
+  ScratchDir dir("stream");
+  const std::string p = dir.path("cr.csv");
+  writeFile(p, "Lx,Ly,Lz,Vx,Vy,Vz\n\n\t\n\n\n\n\r\n\r\t\n\n\r\t\n\n,\n");
+  const std::string expected = p + ":2: empty line; expected 6 fields (Lx,Ly,Lz,Vx,Vy,Vz)";
+  EXPECT_EQ(errorOf([&] { readSamples(p, 0, true); }), expected);
+  for (std::size_t chunk : {1, 2, 3, 5, 100}) {
+    EXPECT_EQ(errorOf([&] {
+                SampleStream stream(p, 0, true);
+                readAllChunks(stream, chunk);
+              }),
+              expected)
+        << "chunk " << chunk;
+  }
+  // Blank lines with CRLF ends and then only a "\r" at the end of the file stay trailing blanks.
+  writeFile(p, csvFile(randomRows(3, false, 1, 22), false) + "\r\n \r\n\r");
+  for (std::size_t chunk : {1, 2, 100}) {
+    SampleStream stream(p, 0, true);
+    EXPECT_EQ(readAllChunks(stream, chunk).size(), 3u) << chunk;
+  }
+}
+
 TEST(SampleStream, TrailingBlankLinesAcrossChunksAreNotRows) {
   ScratchDir dir("stream");
   const auto rows = randomRows(10, true, 2, 5);

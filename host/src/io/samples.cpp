@@ -192,9 +192,15 @@ std::string_view trim(std::string_view s) {
   return s;
 }
 
+// Whether [p, end) holds only blank lines, by the rule a line is held to (one '\r' before its
+// '\n' is dropped, then spaces and tabs): a '\r' anywhere else makes its line non-blank. The
+// readers ask both questions, so the two must agree or a file's first error depends on chunking.
 bool allBlank(const char* p, const char* end) {
-  for (; p < end; ++p)
-    if (!isBlank(*p) && *p != '\r' && *p != '\n') return false;
+  for (; p < end; ++p) {
+    if (isBlank(*p) || *p == '\n') continue;
+    if (*p == '\r' && (p + 1 == end || p[1] == '\n')) continue;
+    return false;
+  }
   return true;
 }
 
@@ -381,11 +387,14 @@ class CsvReader {
   // without keeping them).
   bool restIsBlank(std::size_t from) const {
     if (!allBlank(buf_.data() + from, buf_.data() + end_)) return false;
+    // A '\r' ending one piece is blank only if the next piece starts with '\n'.
+    bool endsInCr = end_ > from && buf_[end_ - 1] == '\r';
     std::vector<char> block(kBlock);
     for (std::size_t at = offset_;;) {
       const std::size_t n = src_.readAt(at, block.data(), block.size());
       if (n == 0) return true;
-      if (!allBlank(block.data(), block.data() + n)) return false;
+      if ((endsInCr && block[0] != '\n') || !allBlank(block.data(), block.data() + n)) return false;
+      endsInCr = block[n - 1] == '\r';
       at += n;
     }
   }
