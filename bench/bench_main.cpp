@@ -1,13 +1,20 @@
 // build/bin/brdfcl-bench: Google Benchmark over the batch kernel and its peers on the same
 // arrays in the same run (scalar C++ loop, OpenMP-SIMD loop, STREAM-triad memory bound), plus
-// grid evaluation and the sheen albedo bake. Every Eval/peer row reports items/s and bytes/s
-// at 40 bytes a sample, so ratios can be read off one JSON file.
+// grid evaluation, file-to-file streaming (overlapped vs serial) and the sheen albedo bake. Every
+// Eval/peer row reports items/s and bytes/s at 40 bytes a sample, so ratios can be read off one JSON file.
 #include <benchmark/benchmark.h>
 
+#include <unistd.h>
+
 #include <cmath>
+#include <cstdio>
+#include <fstream>
 #include <memory>
+#include <random>
+#include <string>
 
 #include "brdfcl/render.hpp"
+#include "brdfcl/stream.hpp"
 #include "workload.hpp"
 
 using namespace brdfcl;
@@ -76,6 +83,46 @@ void BM_EvalGrid(benchmark::State& state) {
   state.SetItemsProcessed(std::int64_t(state.iterations()) * std::int64_t(n * w.materials.size()));
 }
 
+// `brdfcl eval` on a float32 NPY file of n samples (all layers), file to file: reading and
+// writing overlapped with evaluation (the default) against the same steps one after another.
+// The input is written once per process to the temp directory and the output replaced each run.
+void BM_EvalFile(benchmark::State& state, bool overlap) {
+  const std::size_t n = std::size_t(state.range(0));
+  const auto w = bench::makeWorkload("all");
+  const std::string dir = (std::getenv("TMPDIR") ? std::getenv("TMPDIR") : "/tmp");
+  const std::string in = dir + "/brdfcl-bench-" + std::to_string(::getpid()) + "-" + std::to_string(n) + ".npy";
+  const std::string out = dir + "/brdfcl-bench-" + std::to_string(::getpid()) + "-out.npy";
+  {
+    std::string dict = "{'descr': '<f4', 'fortran_order': False, 'shape': (" + std::to_string(n) + ", 7), }";
+    dict.append(63 - (10 + dict.size()) % 64, ' ');
+    dict += '\n';
+    std::ofstream f(in, std::ios::binary);
+    f << std::string("\x93NUMPY\x01\x00", 8) << char(dict.size() & 0xff) << char(dict.size() >> 8) << dict;
+    std::mt19937 rng(1);
+    std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+    std::vector<float> row(7);
+    for (std::size_t i = 0; i < n; ++i) {
+      row = {float(i % w.materials.size()), u(rng), u(rng), 1.5f + u(rng), u(rng), u(rng), 1.5f + u(rng)};
+      f.write(reinterpret_cast<const char*>(row.data()), 28);
+    }
+  }
+  Evaluator ev(runtime(), w.options);
+  StreamOptions o;
+  o.overlap = overlap;
+  const auto run = [&] {
+    SampleStream samples(in, w.materials.size(), false);
+    ResultWriter writer(out);
+    evaluateStream(ev, w.materials, samples, writer, o);
+    writer.commit();
+  };
+  run();  // program build, E table and page cache stay out of the timing
+  for (auto _ : state) run();
+  state.SetItemsProcessed(std::int64_t(state.iterations()) * std::int64_t(n));
+  state.SetBytesProcessed(std::int64_t(state.iterations()) * std::int64_t(n) * (28 + 12));
+  std::remove(in.c_str());
+  std::remove(out.c_str());
+}
+
 void BM_LutBake(benchmark::State& state) {
   const std::size_t size = std::size_t(state.range(0));
   bakeSheenAlbedo(runtime(), SheenDistribution::Charlie, SheenVisibility::Charlie, 8);  // build the program
@@ -110,6 +157,9 @@ void registerAll() {
   }
   benchmark::RegisterBenchmark("BM_StreamTriad", BM_StreamTriad)->Arg(1 << 25)->Iterations(1)->UseRealTime();
   benchmark::RegisterBenchmark("BM_EvalGrid", BM_EvalGrid)->Arg(1 << 14)->UseRealTime()->Unit(benchmark::kMillisecond);
+  for (const bool overlap : {true, false})
+    benchmark::RegisterBenchmark(overlap ? "BM_EvalFile/overlapped" : "BM_EvalFile/serial", BM_EvalFile, overlap)
+        ->Arg(1 << 23)->UseRealTime()->Unit(benchmark::kMillisecond);
   benchmark::RegisterBenchmark("BM_Shade", BM_Shade)->Arg(512)->UseRealTime()->Unit(benchmark::kMillisecond);
   benchmark::RegisterBenchmark("BM_LutBake", BM_LutBake)->Arg(64)->UseRealTime()->Unit(benchmark::kMillisecond);
 }

@@ -379,12 +379,14 @@ std::vector<MaterialParams> someMaterials(std::size_t n, std::uint64_t salt) {
 }
 
 std::string streamToFile(Evaluator& ev, const std::vector<MaterialParams>& materials, const std::string& in,
-                         const std::string& out, std::size_t chunk, bool grid, StreamStats* stats = nullptr) {
+                         const std::string& out, std::size_t chunk, bool grid, StreamStats* stats = nullptr,
+                         bool overlap = true) {
   SampleStream samples(in, grid ? 0 : materials.size(), grid);
   ResultWriter writer(out);
   StreamOptions o;
   o.chunk = chunk;
   o.grid = grid;
+  o.overlap = overlap;
   const StreamStats s = evaluateStream(ev, materials, samples, writer, o);
   if (stats) *stats = s;
   writer.commit();
@@ -408,6 +410,8 @@ TEST(Stream, ChunkedEvaluationEqualsOneShot) {
       EXPECT_EQ(stats.samples, 3000u);
       EXPECT_EQ(stats.rows, 3000u);
       EXPECT_EQ(stats.chunks, (3000 + chunk - 1) / chunk);
+      EXPECT_EQ(streamToFile(ev, materials, in, dir.path("serial" + ext), chunk, false, nullptr, false), expected)
+          << name << " chunk " << chunk << " without overlap";
     }
   }
   // Large launches run in fixed work-groups, small ones in the runtime's: same bits either way.

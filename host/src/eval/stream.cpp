@@ -84,14 +84,16 @@ StreamStats evaluateStream(Evaluator& evaluator, const std::vector<MaterialParam
   // Two slots each: while slot k is evaluated, slot k+1 is read and the results of slot k-1
   // are written. Futures of std::async wait in their destructors, so an exception here never
   // leaves a thread touching a slot.
+  // Deferred futures run at get(): the same code then reads, evaluates and writes in turn.
+  const auto policy = options.overlap ? std::launch::async : std::launch::deferred;
   Work work[2];
   std::vector<float> rgb[2];
-  std::future<bool> reading = std::async(std::launch::async, produce, std::ref(work[0]));
+  std::future<bool> reading = std::async(policy, produce, std::ref(work[0]));
   std::future<void> writing;
   for (std::size_t k = 0;; ++k) {
     Work& w = work[k % 2];
     if (!reading.get()) break;
-    reading = std::async(std::launch::async, produce, std::ref(work[(k + 1) % 2]));
+    reading = std::async(policy, produce, std::ref(work[(k + 1) % 2]));
 
     const Samples& dirs = w.directions();
     std::vector<float>& result = rgb[k % 2];
@@ -106,7 +108,7 @@ StreamStats evaluateStream(Evaluator& evaluator, const std::vector<MaterialParam
     ++stats.chunks;
 
     if (writing.valid()) writing.get();  // frees rgb[(k + 1) % 2] for the next round
-    writing = std::async(std::launch::async, [&out, &result] { out.append(result.data(), result.size() / 3); });
+    writing = std::async(policy, [&out, &result] { out.append(result.data(), result.size() / 3); });
   }
   if (writing.valid()) writing.get();
   return stats;
