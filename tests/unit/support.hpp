@@ -17,6 +17,17 @@
 
 namespace brdfcl::test {
 
+// AddressSanitizer reserves terabytes of shadow address space at start-up, so tests that model
+// running out of memory with an address-space limit (RLIMIT_AS) cannot run under it; make
+// test-asan sets allocator_may_return_null=1, so the plain allocation-failure tests still do.
+#if defined(__SANITIZE_ADDRESS__)
+constexpr bool kAddressSanitizer = true;
+#else
+constexpr bool kAddressSanitizer = false;
+#endif
+constexpr const char* kNoAddressSpaceLimitUnderAsan =
+    "an address-space limit cannot model out-of-memory under AddressSanitizer (its shadow memory)";
+
 // One runtime for the whole test binary: PoCL builds each kernel variant once.
 inline Runtime& runtime() {
   static Runtime rt;

@@ -266,6 +266,7 @@ TEST_F(Errors, OutOfHostMemoryForABatch) {
 // 1 GiB address-space limit. One PoCL thread and one malloc arena keep the process itself
 // well below the limit on any machine.
 TEST_F(Errors, OutOfHostMemoryInTheCli) {
+  if (brdfcl::test::kAddressSanitizer) GTEST_SKIP() << brdfcl::test::kNoAddressSpaceLimitUnderAsan;
   const Child c = cli({"bench", "--n", "268435456", "--runs", "1"},
                       {{"POCL_MAX_PTHREAD_COUNT", "1"}, {"MALLOC_ARENA_MAX", "1"}}, 1024);
   expectUserError(c, "out of host memory allocating 1024 MiB for a batch");
@@ -458,6 +459,7 @@ TEST_F(Errors, FullDiskWhileWritingImagesAndLuts) {
 class ErrorsDeathTest : public Errors {};
 
 TEST_F(ErrorsDeathTest, PngEncoderOutOfMemory) {
+  if (brdfcl::test::kAddressSanitizer) GTEST_SKIP() << brdfcl::test::kNoAddressSpaceLimitUnderAsan;
   GTEST_FLAG_SET(death_test_style, "threadsafe");
   const std::string out = path("big.png");
   EXPECT_EXIT(

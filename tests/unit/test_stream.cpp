@@ -557,11 +557,7 @@ TEST(StreamCli, ChunkOutOfRange) {
 // correctness only: their shadow memory and quarantine are not the tool's own. Rows repeat a block of random samples, so a
 // spot check of rows anywhere in the output can be computed from the block.
 TEST(StreamCli, HundredMillionSamplesStayUnderOneGiB) {
-#if defined(__SANITIZE_ADDRESS__)
-  std::size_t n = 10'000'000;
-#else
-  std::size_t n = 100'000'000;
-#endif
+  std::size_t n = kAddressSanitizer ? 10'000'000 : 100'000'000;
   if (const char* e = std::getenv("BRDFCL_STREAM_SAMPLES")) n = std::strtoull(e, nullptr, 10);
   ScratchDir dir("stream-big");
   writeFile(dir.path("m.json"), kMaterialsJson);
@@ -585,9 +581,8 @@ TEST(StreamCli, HundredMillionSamplesStayUnderOneGiB) {
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   ASSERT_EQ(r.status, 0) << r.describe();
   std::printf("[ stream   ] %zu samples in %.1f s, peak resident %.0f MiB\n", n, seconds, r.maxRssKiB / 1024.0);
-#if !defined(__SANITIZE_ADDRESS__)  // ASan's shadow memory and quarantine alone reach ~1 GiB here
-  EXPECT_LT(r.maxRssKiB, 1024 * 1024) << "peak resident set of `brdfcl eval` on " << n << " samples";
-#endif
+  if (!kAddressSanitizer)  // ASan's shadow memory and quarantine alone reach ~1 GiB here
+    EXPECT_LT(r.maxRssKiB, 1024 * 1024) << "peak resident set of `brdfcl eval` on " << n << " samples";
 
   struct stat st {};
   ASSERT_EQ(::stat(dir.path("out.npy").c_str(), &st), 0);
