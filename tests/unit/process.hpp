@@ -4,7 +4,6 @@
 #pragma once
 #include <fcntl.h>
 #include <signal.h>
-#include <spawn.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -15,6 +14,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -52,27 +52,48 @@ inline std::string slurp(const std::string& path) {
   return s.str();
 }
 
-// argv[0] is the program's path. stdout/stderr go to files in `scratchDir`.
-inline RunResult runProcess(std::vector<std::string> argv, const std::string& scratchDir, const std::string& cwd = "",
-                            std::chrono::seconds timeout = std::chrono::seconds(120)) {
+// How to run the child beyond its arguments.
+struct ProcessOptions {
+  std::map<std::string, std::string> env;  // set (or replace) these variables
+  std::size_t addressSpaceMiB = 0;         // RLIMIT_AS for the child; 0 leaves it alone
+  std::string cwd;                         // working directory; empty keeps ours
+  std::chrono::seconds timeout{120};
+};
+
+// argv[0] is the program's path. stdout/stderr go to files in `scratchDir`. Plain fork + execve:
+// everything is prepared before the fork, so between the two the child only makes system calls,
+// which is safe although this process runs PoCL's threads.
+inline RunResult runProcess(std::vector<std::string> argv, const std::string& scratchDir, const ProcessOptions& o) {
   const std::string outPath = scratchDir + "/stdout", errPath = scratchDir + "/stderr";
-  std::vector<char*> args;
+  std::vector<std::string> envStrings;
+  for (char** e = environ; *e; ++e) {
+    const std::string kv = *e;
+    if (!o.env.count(kv.substr(0, kv.find('=')))) envStrings.push_back(kv);
+  }
+  for (const auto& [k, v] : o.env) envStrings.push_back(k + "=" + v);
+  std::vector<char*> args, envp;
   for (auto& a : argv) args.push_back(a.data());
   args.push_back(nullptr);
+  for (auto& e : envStrings) envp.push_back(e.data());
+  envp.push_back(nullptr);
+  struct rlimit limit {};
+  limit.rlim_cur = limit.rlim_max = rlim_t(o.addressSpaceMiB) << 20;
 
-  posix_spawn_file_actions_t fa;
-  posix_spawn_file_actions_init(&fa);
-  posix_spawn_file_actions_addopen(&fa, 0, "/dev/null", O_RDONLY, 0);
-  posix_spawn_file_actions_addopen(&fa, 1, outPath.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_addopen(&fa, 2, errPath.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  if (!cwd.empty()) posix_spawn_file_actions_addchdir_np(&fa, cwd.c_str());
-  pid_t pid = -1;
-  const int rc = posix_spawn(&pid, args[0], &fa, nullptr, args.data(), environ);
-  posix_spawn_file_actions_destroy(&fa);
-  if (rc != 0) throw std::runtime_error(std::string("posix_spawn ") + args[0] + ": " + std::strerror(rc));
+  const pid_t pid = ::fork();
+  if (pid < 0) throw std::runtime_error(std::string("fork: ") + std::strerror(errno));
+  if (pid == 0) {
+    if (!o.cwd.empty() && ::chdir(o.cwd.c_str()) != 0) ::_exit(126);
+    if (o.addressSpaceMiB > 0 && ::setrlimit(RLIMIT_AS, &limit) != 0) ::_exit(126);
+    const int in = ::open("/dev/null", O_RDONLY);
+    const int out = ::open(outPath.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    const int err = ::open(errPath.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    if (in < 0 || out < 0 || err < 0 || ::dup2(in, 0) < 0 || ::dup2(out, 1) < 0 || ::dup2(err, 2) < 0) ::_exit(126);
+    ::execve(args[0], args.data(), envp.data());
+    ::_exit(127);
+  }
 
   // A hung child must fail the test, not the whole run.
-  const auto deadline = std::chrono::steady_clock::now() + timeout;
+  const auto deadline = std::chrono::steady_clock::now() + o.timeout;
   int status = 0;
   struct rusage usage {};
   for (;;) {
@@ -82,7 +103,7 @@ inline RunResult runProcess(std::vector<std::string> argv, const std::string& sc
     if (std::chrono::steady_clock::now() > deadline) {
       ::kill(pid, SIGKILL);
       ::waitpid(pid, &status, 0);
-      throw std::runtime_error(argv[0] + " did not finish within " + std::to_string(timeout.count()) + " s");
+      throw std::runtime_error(argv[0] + " did not finish within " + std::to_string(o.timeout.count()) + " s");
     }
     std::this_thread::sleep_for(std::chrono::milliseconds(2));
   }
@@ -92,6 +113,14 @@ inline RunResult runProcess(std::vector<std::string> argv, const std::string& sc
   r.err = slurp(errPath);
   r.maxRssKiB = usage.ru_maxrss;
   return r;
+}
+
+inline RunResult runProcess(std::vector<std::string> argv, const std::string& scratchDir, const std::string& cwd = "",
+                            std::chrono::seconds timeout = std::chrono::seconds(120)) {
+  ProcessOptions o;
+  o.cwd = cwd;
+  o.timeout = timeout;
+  return runProcess(std::move(argv), scratchDir, o);
 }
 
 }  // namespace brdfcl::test

@@ -32,6 +32,7 @@
 #include <thread>
 #include <vector>
 
+#include "process.hpp"
 #include "support.hpp"
 #include "brdfcl/error.hpp"
 #include "brdfcl/evaluator.hpp"
@@ -43,8 +44,6 @@
 #include "brdfcl/runtime.hpp"
 #include "kernels/common/shading_layout.h"
 
-extern char** environ;
-
 namespace fs = std::filesystem;
 using namespace brdfcl;
 using brdfcl::test::errorOf;
@@ -54,74 +53,7 @@ namespace {
 
 std::atomic<int> dirCounter{0};
 
-std::string readAll(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-struct Child {
-  int status = -1;  // exit code, or 128 + signal
-  std::string out, err;
-};
-
-// Runs `argv` with extra environment variables and, if asMiB > 0, an address-space limit. Plain
-// fork + execve: between the two the child only makes system calls, which is safe even though
-// this process runs PoCL's threads.
-Child spawn(const std::vector<std::string>& args, const std::map<std::string, std::string>& env,
-            const fs::path& scratch, std::size_t asMiB = 0) {
-  std::vector<std::string> envStrings;
-  for (char** e = environ; *e; ++e) {
-    const std::string kv = *e;
-    if (!env.count(kv.substr(0, kv.find('=')))) envStrings.push_back(kv);
-  }
-  for (const auto& [k, v] : env) envStrings.push_back(k + "=" + v);
-  std::vector<char*> argv, envp;
-  std::vector<std::string> argStrings = args;
-  for (auto& a : argStrings) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  for (auto& e : envStrings) envp.push_back(e.data());
-  envp.push_back(nullptr);
-  const std::string outPath = (scratch / "child.out").string(), errPath = (scratch / "child.err").string();
-
-  const pid_t pid = ::fork();
-  if (pid < 0) throw std::runtime_error("fork failed");
-  if (pid == 0) {
-    if (asMiB > 0) {
-      struct rlimit limit {};
-      limit.rlim_cur = limit.rlim_max = rlim_t(asMiB) << 20;
-      if (::setrlimit(RLIMIT_AS, &limit) != 0) ::_exit(126);
-    }
-    const int in = ::open("/dev/null", O_RDONLY);
-    const int out = ::open(outPath.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    const int err = ::open(errPath.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    if (in < 0 || out < 0 || err < 0 || ::dup2(in, 0) < 0 || ::dup2(out, 1) < 0 || ::dup2(err, 2) < 0) ::_exit(126);
-    ::execve(argv[0], argv.data(), envp.data());
-    ::_exit(127);
-  }
-  // A hung child must fail the test, not the whole run.
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(180);
-  int status = 0;
-  for (;;) {
-    const pid_t w = ::waitpid(pid, &status, WNOHANG);
-    if (w == pid) break;
-    if (w < 0 && errno != EINTR) throw std::runtime_error("waitpid failed");
-    if (std::chrono::steady_clock::now() > deadline) {
-      ::kill(pid, SIGKILL);
-      ::waitpid(pid, &status, 0);
-      throw std::runtime_error(args[0] + " did not finish within 180 s");
-    }
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));
-  }
-  Child c;
-  c.status = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-  c.out = readAll(outPath);
-  c.err = readAll(errPath);
-  fs::remove(outPath);
-  fs::remove(errPath);
-  return c;
-}
+using Child = brdfcl::test::RunResult;
 
 class Errors : public ::testing::Test {
  protected:
@@ -155,7 +87,11 @@ class Errors : public ::testing::Test {
             std::size_t asMiB = 0) const {
     std::vector<std::string> all{BRDFCL_CLI_PATH};
     all.insert(all.end(), args.begin(), args.end());
-    return spawn(all, env, root_, asMiB);
+    brdfcl::test::ProcessOptions o;
+    o.env = env;
+    o.addressSpaceMiB = asMiB;
+    o.timeout = std::chrono::seconds(180);
+    return brdfcl::test::runProcess(all, root_.string(), o);
   }
 
   // A valid eval run's inputs, so that only the environment or the option under test can fail.
@@ -446,7 +382,7 @@ TEST_F(Errors, FullDiskWhileWritingImagesAndLuts) {
     EXPECT_NE(m.find("File too large"), std::string::npos) << m;
     EXPECT_EQ(m.find(".tmp."), std::string::npos) << m;
   }
-  EXPECT_EQ(readAll(path("keep.png")), "old");
+  EXPECT_EQ(brdfcl::test::slurp(path("keep.png")), "old");
   EXPECT_EQ(listWork(), std::set<std::string>{"keep.png"});
 }
 
@@ -497,7 +433,7 @@ TEST_F(ErrorsDeathTest, PngEncoderOutOfMemory) {
 TEST_F(Errors, DeepExrRejected) {
   const std::string p = path("d.exr");
   writeExrRgb(p, 2, 2, std::vector<float>(12, 0.5f));
-  std::string bytes = readAll(p);
+  std::string bytes = brdfcl::test::slurp(p);
   bytes[5] = char(bytes[5] | 0x08);  // version field bit 11: "non-image" (deep) data
   write("d.exr", bytes);
   int w = 0, h = 0;
