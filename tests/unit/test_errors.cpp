@@ -51,24 +51,12 @@ using brdfcl::test::runtime;
 
 namespace {
 
-std::atomic<int> dirCounter{0};
-
 using Child = brdfcl::test::RunResult;
 
 class Errors : public ::testing::Test {
  protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    root_ = fs::temp_directory_path() /
-            ("brdfcl-err-" + std::to_string(::getpid()) + "-" + info->name() + "-" + std::to_string(dirCounter++));
-    fs::remove_all(root_);
-    work_ = root_ / "work";
-    fs::create_directories(work_);
-  }
-  void TearDown() override {
-    std::error_code ec;
-    fs::remove_all(root_, ec);
-  }
+  // The CLI's captured stdout/stderr sit in root_; the files a test reads and writes in work_.
+  void SetUp() override { fs::create_directories(work_); }
 
   std::string path(const std::string& name) const { return (work_ / name).string(); }
   std::string write(const std::string& name, const std::string& content) const {
@@ -118,7 +106,8 @@ class Errors : public ::testing::Test {
     return dir.string();
   }
 
-  fs::path root_, work_;
+  brdfcl::test::ScratchDir scratch_{"err"};
+  const fs::path root_ = scratch_.dir(), work_ = root_ / "work";
 };
 
 // ---------------------------------------------------------------------------------------------
@@ -419,7 +408,7 @@ TEST_F(ErrorsDeathTest, PngEncoderOutOfMemory) {
           code = fs::exists(out) || !fs::is_empty(work_) ? 2 : 0;
         }
         std::error_code ec;
-        fs::remove_all(root_, ec);  // this copy's own fixture directory: its TearDown never runs
+        fs::remove_all(root_, ec);  // this copy's own fixture directory: its destructor never runs
         std::fflush(stderr);
         ::_exit(code);
       },
