@@ -25,6 +25,8 @@ struct GBuffer {
   std::vector<float> sheenColor, sheenRoughness;
   std::vector<float> clearcoat, clearcoatRoughness, clearcoatN;
   std::vector<float> anisotropyStrength, anisotropyRotation;  // rotation in radians, CCW from T
+  std::vector<float> occlusion;  // glTF ambient occlusion, [0, 1]; dims image-based light only (default 1)
+  std::vector<float> V;          // world direction towards the viewer, unit; overrides the scene camera
 
   std::size_t pixelCount() const { return static_cast<std::size_t>(width) * static_cast<std::size_t>(height); }
   bool hasTangent() const { return !T.empty(); }
@@ -32,6 +34,8 @@ struct GBuffer {
   bool hasSheen() const { return !sheenColor.empty() || !sheenRoughness.empty(); }
   bool hasClearcoat() const { return !clearcoat.empty() || !clearcoatRoughness.empty() || !clearcoatN.empty(); }
   bool hasAnisotropy() const { return !anisotropyStrength.empty() || !anisotropyRotation.empty(); }
+  bool hasOcclusion() const { return !occlusion.empty(); }
+  bool hasView() const { return !V.empty(); }
 };
 
 // Reads and checks a G-buffer EXR (HALF or FLOAT channels). Accepts the canonical names of
