@@ -1,13 +1,18 @@
-// `brdfcl gbuffer`, `brdfcl shade`, `brdfcl render` and `brdfcl demo`: the built-in spheres
-// G-buffer, deferred shading of any G-buffer under a scene's lights and environment, and both
-// chained into linear EXR radiance and a tone-mapped PNG.
+// `brdfcl gbuffer`, `brdfcl shade`, `brdfcl render` and `brdfcl demo`: G-buffers of the built-in
+// spheres or of a glTF asset, deferred shading of any G-buffer under a scene's lights and
+// environment, and both chained into linear EXR radiance and a tone-mapped PNG.
+#include <unistd.h>
+
 #include <cstdio>
 #include <filesystem>
 
 #include <fmt/format.h>
 
+#include "brdfcl/demo_asset.hpp"
 #include "brdfcl/error.hpp"
 #include "brdfcl/gbuffer.hpp"
+#include "brdfcl/gltf.hpp"
+#include "brdfcl/gltf_frame.hpp"
 #include "brdfcl/image.hpp"
 #include "brdfcl/render.hpp"
 #include "commands.hpp"
@@ -27,36 +32,122 @@ Scene builtinScene(const std::string& name) {
   return spheresScene();
 }
 
-void renderAndWrite(Runtime& rt, const Scene& scene, const GBuffer& g, const std::string& exr, const std::string& png,
-                    float exposure) {
-  Shader shader(rt, scene);
-  const Image img = shader.shade(g);
-  if (!exr.empty()) writeExrRgb(exr, img.width, img.height, img.rgb);
-  if (!png.empty()) writePng(png, img.width, img.height, img.rgb, exposure);
-}
-
 std::string lowerExtension(const std::string& path) {
   auto e = std::filesystem::path(path).extension().string();
   for (auto& c : e) c = char(std::tolower(static_cast<unsigned char>(c)));
   return e;
+}
+
+void requireExtension(const std::string& option, const std::string& path, const char* extension) {
+  if (!path.empty() && lowerExtension(path) != extension)
+    throw Error(fmt::format("{} '{}' must end in {}", option, path, extension));
+}
+
+void writeImages(const Image& img, const std::string& exr, const std::string& png, float exposure) {
+  if (!exr.empty()) writeExrRgb(exr, img.width, img.height, img.rgb);
+  if (!png.empty()) writePng(png, img.width, img.height, img.rgb, exposure);
+}
+
+// What selects and frames a glTF asset; shared by gbuffer, render and demo.
+struct GltfArgs {
+  std::string path, camera, variant, size;
+  int scene = -1;
+
+  void add(CLI::App* cmd) {
+    cmd->add_option("--gltf", path, "glTF asset (.gltf or .glb) instead of a built-in scene");
+    cmd->add_option("--camera", camera, "glTF camera index, or auto (default: the scene's first camera node, else auto)");
+    cmd->add_option("--gltf-scene", scene, "glTF scene index (default: the file's default scene)");
+    cmd->add_option("--variant", variant, "KHR_materials_variants variant name");
+  }
+  // Options that only mean something for a glTF asset are refused for the built-in scenes.
+  void checkBuiltin(CLI::App* cmd) const {
+    for (const char* o : {"--camera", "--gltf-scene", "--variant"})
+      if (cmd->count(o)) throw Error(fmt::format("{} applies to glTF assets; add --gltf FILE", o));
+  }
+};
+
+struct LoadedAsset {
+  gltf::Asset asset;
+  gltf::View view;
+  int width = 0, height = 0;
+};
+
+LoadedAsset loadAsset(const GltfArgs& a) {
+  gltf::LoadOptions options;
+  options.scene = a.scene;
+  options.variant = a.variant;
+  LoadedAsset l{gltf::load(a.path, options), {}, 0, 0};
+  for (const auto& w : l.asset.warnings) std::fprintf(stderr, "brdfcl: warning: %s\n", w.c_str());
+  if (a.size.empty())
+    gltf::defaultSize(l.asset, a.camera, l.width, l.height);
+  else
+    parseSize(a.size, l.width, l.height);
+  l.view = gltf::chooseView(l.asset, a.camera, l.width, l.height);
+  return l;
+}
+
+// Progress on stderr only when a person is watching it.
+std::function<void(int, int)> progressLine(const char* what) {
+  if (!isatty(STDERR_FILENO)) return {};
+  return [what](int done, int total) {
+    std::fprintf(stderr, "\r%s: sample %d/%d", what, done, total);
+    if (done == total) std::fputc('\n', stderr);
+    std::fflush(stderr);
+  };
+}
+
+// The options that choose light for render and demo.
+struct LightingArgs {
+  std::string environment = "builtin", lights = "gltf";
+  float envIntensity = 1.0f, envRotation = 0.0f;
+  bool environmentGiven = false;
+
+  void add(CLI::App* cmd) {
+    cmd->add_option("--environment", environment, "builtin|sky|studio|uniform|FILE.hdr|FILE.exr (default builtin: the sky)");
+    cmd->add_option("--env-intensity", envIntensity, "environment radiance scale (default 1)");
+    cmd->add_option("--env-rotation", envRotation, "environment rotation about +Y in radians (default 0)");
+    cmd->add_option("--lights", lights, "gltf (the file's lights, else a default key light), none, or SCENE.json");
+  }
+  Environment environmentChoice(CLI::App* cmd) {
+    environmentGiven = cmd->count("--environment") || cmd->count("--env-intensity") || cmd->count("--env-rotation");
+    return parseEnvironmentSpec(environment, envIntensity, envRotation);
+  }
+};
+
+Image renderGltf(Runtime& rt, const LoadedAsset& l, const Scene& lighting, int spp, const std::string& gbufferOut) {
+  gltf::Raycaster raycaster(l.asset);
+  Shader shader(rt, lighting);
+  const Image img = gltf::renderFrame(shader, raycaster, l.view, l.width, l.height, spp, progressLine("brdfcl render"));
+  if (!gbufferOut.empty()) writeGBuffer(gbufferOut, raycaster.trace(l.view, l.width, l.height));
+  return img;
 }
 }  // namespace
 
 void addRenderCommands(CLI::App& app) {
   {
     struct Args {
-      std::string scene = "spheres", size = "768x768", out, device;
+      std::string scene = "spheres", out, device;
+      GltfArgs gltf;
     };
     auto a = std::make_shared<Args>();
-    auto* cmd = app.add_subcommand("gbuffer", "Ray-cast a built-in scene into a G-buffer EXR (docs/gbuffer.md)");
+    auto* cmd = app.add_subcommand("gbuffer", "Ray-cast a glTF asset or a built-in scene into a G-buffer EXR (docs/gbuffer.md)");
     cmd->add_option("--scene", a->scene, "built-in scene (spheres)");
-    cmd->add_option("--size", a->size, "WIDTHxHEIGHT (default 768x768)");
+    a->gltf.add(cmd);
+    cmd->add_option("--size", a->gltf.size, "WIDTHxHEIGHT (default 768x768 for spheres; 1280x720 or the camera's aspect at 720 rows)");
     cmd->add_option("--out", a->out, "output G-buffer .exr")->required();
     cmd->add_option("--device", a->device, "device index or name substring");
-    cmd->callback([a] {
-      int w, h;
-      parseSize(a->size, w, h);
-      if (lowerExtension(a->out) != ".exr") throw Error(fmt::format("--out '{}' must end in .exr", a->out));
+    cmd->callback([a, cmd] {
+      requireExtension("--out", a->out, ".exr");
+      if (!a->gltf.path.empty()) {
+        if (cmd->count("--scene")) throw Error("--scene and --gltf are alternatives; give one");
+        const LoadedAsset l = loadAsset(a->gltf);
+        gltf::Raycaster raycaster(l.asset);
+        writeGBuffer(a->out, raycaster.trace(l.view, l.width, l.height));
+        return;
+      }
+      a->gltf.checkBuiltin(cmd);
+      int w = 768, h = 768;
+      if (!a->gltf.size.empty()) parseSize(a->gltf.size, w, h);
       const Scene scene = builtinScene(a->scene);
       Runtime rt(a->device);
       writeGBuffer(a->out, renderSpheresGBuffer(rt, scene, w, h));
@@ -76,49 +167,104 @@ void addRenderCommands(CLI::App& app) {
     cmd->add_option("--exposure", a->exposure, "exposure in stops for the PNG (default 0)");
     cmd->add_option("--device", a->device, "device index or name substring");
     cmd->callback([a] {
-      if (lowerExtension(a->out) != ".exr") throw Error(fmt::format("--out '{}' must end in .exr", a->out));
-      if (!a->png.empty() && lowerExtension(a->png) != ".png") throw Error(fmt::format("--png '{}' must end in .png", a->png));
+      requireExtension("--out", a->out, ".exr");
+      requireExtension("--png", a->png, ".png");
       const GBuffer g = readGBuffer(a->gbuffer);
       const Scene scene = readScene(a->scene);
       Runtime rt(a->device);
-      renderAndWrite(rt, scene, g, a->out, a->png, a->exposure);
+      Shader shader(rt, scene);
+      writeImages(shader.shade(g), a->out, a->png, a->exposure);
     });
   }
-  auto addRender = [&](const char* name, const char* help, bool demo) {
+  {
     struct Args {
-      std::string scene = "spheres", size = "768x768", out, exr, device;
+      std::string scene = "spheres", out, exr, gbuffer, device;
       float exposure = 0.0f;
+      int spp = 4;
+      GltfArgs gltf;
+      LightingArgs lighting;
     };
     auto a = std::make_shared<Args>();
-    if (demo) a->out = "out/demo.png", a->exr = "out/demo.exr";
-    auto* cmd = app.add_subcommand(name, help);
-    if (!demo) {
-      cmd->add_option("--scene", a->scene, "built-in scene (spheres)");
-      cmd->add_option("--out", a->out, "output .png")->required();
-      cmd->add_option("--exr", a->exr, "also the linear radiance as .exr");
-    }
-    cmd->add_option("--size", a->size, "WIDTHxHEIGHT (default 768x768)");
+    auto* cmd = app.add_subcommand("render", "Render a glTF asset or a built-in scene (G-buffer + shading) to PNG (and EXR)");
+    cmd->add_option("--scene", a->scene, "built-in scene (spheres)");
+    a->gltf.add(cmd);
+    cmd->add_option("--size", a->gltf.size, "WIDTHxHEIGHT (default 768x768 for spheres; 1280x720 or the camera's aspect at 720 rows)");
+    cmd->add_option("--spp", a->spp, "stratified sub-pixel samples per pixel, glTF only (default 4)");
+    a->lighting.add(cmd);
+    cmd->add_option("--exposure", a->exposure, "exposure in stops (default 0)");
+    cmd->add_option("--out", a->out, "output .png")->required();
+    cmd->add_option("--exr", a->exr, "also the linear radiance as .exr");
+    cmd->add_option("--gbuffer", a->gbuffer, "also the pixel-centre G-buffer as .exr");
+    cmd->add_option("--device", a->device, "device index or name substring");
+    cmd->callback([a, cmd] {
+      requireExtension("--out", a->out, ".png");
+      requireExtension("--exr", a->exr, ".exr");
+      requireExtension("--gbuffer", a->gbuffer, ".exr");
+      if (a->spp < 1 || a->spp > 1024) throw Error(fmt::format("--spp {} is out of range; use 1 to 1024", a->spp));
+      const Environment environment = a->lighting.environmentChoice(cmd);
+      if (!a->gltf.path.empty()) {
+        if (cmd->count("--scene")) throw Error("--scene and --gltf are alternatives; give one");
+        const LoadedAsset l = loadAsset(a->gltf);
+        const Scene lighting =
+            gltf::frameLighting(l.asset, l.view, a->lighting.lights, environment, a->lighting.environmentGiven);
+        Runtime rt(a->device);
+        writeImages(renderGltf(rt, l, lighting, a->spp, a->gbuffer), a->exr, a->out, a->exposure);
+        return;
+      }
+      a->gltf.checkBuiltin(cmd);
+      if (cmd->count("--spp")) throw Error("--spp applies to glTF assets (the spheres are shaded at pixel centres); add --gltf FILE");
+      int w = 768, h = 768;
+      if (!a->gltf.size.empty()) parseSize(a->gltf.size, w, h);
+      Scene scene = builtinScene(a->scene);
+      if (a->lighting.environmentGiven) scene.environment = environment;
+      if (a->lighting.lights == "none") {
+        scene.lights.clear();
+      } else if (a->lighting.lights != "gltf") {
+        const Scene file = readScene(a->lighting.lights);
+        scene.lights = file.lights;
+        if (!a->lighting.environmentGiven) scene.environment = file.environment;
+      }
+      Runtime rt(a->device);
+      const GBuffer g = renderSpheresGBuffer(rt, scene, w, h);
+      if (!a->gbuffer.empty()) writeGBuffer(a->gbuffer, g);
+      Shader shader(rt, scene);
+      writeImages(shader.shade(g), a->exr, a->out, a->exposure);
+    });
+  }
+  {
+    struct Args {
+      std::string size, device;
+      float exposure = 0.0f;
+      int spp = 4;
+    };
+    auto a = std::make_shared<Args>();
+    auto* cmd = app.add_subcommand("demo", "Write the sphere sweep as out/demo.glb and render it to out/demo.png and out/demo.exr");
+    cmd->add_option("--size", a->size, "WIDTHxHEIGHT (default 720x720, the camera's aspect at 720 rows)");
+    cmd->add_option("--spp", a->spp, "stratified sub-pixel samples per pixel (default 4)");
     cmd->add_option("--exposure", a->exposure, "exposure in stops (default 0)");
     cmd->add_option("--device", a->device, "device index or name substring");
-    cmd->callback([a, demo] {
-      int w, h;
-      parseSize(a->size, w, h);
-      if (lowerExtension(a->out) != ".png") throw Error(fmt::format("--out '{}' must end in .png", a->out));
-      if (!a->exr.empty() && lowerExtension(a->exr) != ".exr") throw Error(fmt::format("--exr '{}' must end in .exr", a->exr));
-      const Scene scene = builtinScene(a->scene);
-      if (demo) std::filesystem::create_directories("out");
+    cmd->callback([a] {
+      if (a->spp < 1 || a->spp > 1024) throw Error(fmt::format("--spp {} is out of range; use 1 to 1024", a->spp));
+      std::filesystem::create_directories("out");
+      const std::string glb = "out/demo.glb", png = "out/demo.png", exr = "out/demo.exr";
+      gltf::writeDemoAsset(glb);
+      GltfArgs args;
+      args.path = glb;
+      args.size = a->size;
+      const LoadedAsset l = loadAsset(args);
+      Environment studio;
+      studio.builtinKind = "studio";
+      const Scene lighting = gltf::frameLighting(l.asset, l.view, "gltf", studio, true);
       Runtime rt(a->device);
-      renderAndWrite(rt, scene, renderSpheresGBuffer(rt, scene, w, h), a->exr, a->out, a->exposure);
-      if (demo)
-        fmt::print("brdfcl demo: rendered the built-in spheres scene on {}\n  {}\n  {}\n"
-                   "Rows: white sheen and coloured sheen (sheen roughness 0.05 to 1), clearcoat (roughness 0 to 1)\n"
-                   "over a rough base, anisotropy strength 0 to 1, anisotropy rotation 0 to pi, gold metal/dielectric\n"
-                   "roughness 0 to 1. Studio environment, a key and a fill light.\n",
-                   rt.info().name, std::filesystem::absolute(a->out).string(), std::filesystem::absolute(a->exr).string());
+      writeImages(renderGltf(rt, l, lighting, a->spp, ""), exr, png, a->exposure);
+      auto abs = [](const std::string& p) { return std::filesystem::absolute(p).string(); };
+      fmt::print("brdfcl demo: wrote the sphere sweep as a glTF asset and rendered it on {}\n  {}\n  {}\n  {}\n"
+                 "Rows: white sheen and coloured sheen over a woven texture (sheen roughness 0.05 to 1), clearcoat over\n"
+                 "a flake normal map (roughness 0 to 1), brushed anisotropy strength 0 to 1, anisotropy rotation 0 to pi,\n"
+                 "gold metal/dielectric roughness 0 to 1. Studio environment, the file's key and fill lights.\n",
+                 rt.info().name, abs(glb), abs(png), abs(exr));
     });
-  };
-  addRender("render", "Render a built-in scene (G-buffer + shading) to PNG (and EXR)", false);
-  addRender("demo", "Render the built-in spheres scene to out/demo.png and out/demo.exr", true);
+  }
 }
 
 }  // namespace brdfcl::cli

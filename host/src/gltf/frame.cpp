@@ -1,0 +1,73 @@
+// Lighting choice and the multi-sample glTF render: stratified sub-pixel G-buffers, each shaded
+// through the same deferred shader as `brdfcl shade`, averaged into the pixel.
+#include "brdfcl/gltf_frame.hpp"
+
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "brdfcl/error.hpp"
+
+namespace brdfcl::gltf {
+
+Light defaultKeyLight(const View& view) {
+  Light key;
+  key.type = Light::Type::Directional;
+  key.intensity = 3.0f;
+  std::array<double, 3> d{};
+  for (int i = 0; i < 3; ++i) d[i] = 0.5 * view.right[i] - view.up[i] + 0.6 * view.forward[i];
+  const double len = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+  for (int i = 0; i < 3; ++i) key.direction[i] = float(d[i] / len);
+  return key;
+}
+
+Scene frameLighting(const Asset& asset, const View& view, const std::string& lights, const Environment& environment,
+                    bool environmentGiven) {
+  Scene scene;
+  scene.environment = environment;
+  if (lights == "gltf") {
+    scene.lights = asset.lights;
+    if (scene.lights.empty()) scene.lights.push_back(defaultKeyLight(view));
+  } else if (lights != "none") {
+    const Scene file = readScene(lights);
+    scene.lights = file.lights;
+    if (!environmentGiven) scene.environment = file.environment;
+  }
+  return scene;
+}
+
+std::vector<std::array<float, 2>> subpixelOffsets(int spp) {
+  if (spp < 1) throw Error(fmt::format("--spp {} must be at least 1", spp));
+  if (spp == 1) return {{0.5f, 0.5f}};
+  const int columns = int(std::ceil(std::sqrt(double(spp))));
+  const int rows = (spp + columns - 1) / columns;
+  // R2 sequence (Roberts 2018): the plastic constant's powers give well-spread points in a cell.
+  const double g = 1.32471795724474602596, a1 = 1.0 / g, a2 = 1.0 / (g * g);
+  std::vector<std::array<float, 2>> offsets;
+  for (int i = 0; i < spp; ++i) {
+    const double u = std::fmod(0.5 + a1 * (i + 1), 1.0), v = std::fmod(0.5 + a2 * (i + 1), 1.0);
+    const int cx = i % columns, cy = i / columns;
+    offsets.push_back({float((cx + u) / columns), float((cy + v) / rows)});
+  }
+  return offsets;
+}
+
+brdfcl::Image renderFrame(Shader& shader, const Raycaster& raycaster, const View& view, int width, int height, int spp,
+                  const std::function<void(int, int)>& progress) {
+  const auto offsets = subpixelOffsets(spp);
+  brdfcl::Image sum;
+  for (std::size_t k = 0; k < offsets.size(); ++k) {
+    const brdfcl::Image one = shader.shade(raycaster.trace(view, width, height, offsets[k][0], offsets[k][1]));
+    if (k == 0) {
+      sum = one;
+    } else {
+      for (std::size_t i = 0; i < sum.rgb.size(); ++i) sum.rgb[i] += one.rgb[i];
+    }
+    if (progress) progress(int(k + 1), spp);
+  }
+  if (offsets.size() > 1)
+    for (auto& v : sum.rgb) v /= float(offsets.size());
+  return sum;
+}
+
+}  // namespace brdfcl::gltf
