@@ -5,6 +5,7 @@
 
 #include <tiny_gltf.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -58,6 +59,15 @@ std::uint32_t u32(const std::string& s, std::size_t at) {
   return v;
 }
 
+// Chris Wellons' lowbias32, the hash the generator draws its flakes and brush rings from.
+std::uint32_t lowbias32(std::uint32_t x) {
+  x ^= x >> 16;
+  x *= 0x7feb352du;
+  x ^= x >> 15;
+  x *= 0x846ca68bu;
+  return x ^ (x >> 16);
+}
+
 int srgb8(double linear) {
   const double v = std::clamp(linear, 0.0, 1.0);
   return int(std::lround(255.0 * (v <= 0.0031308 ? 12.92 * v : 1.055 * std::pow(v, 1.0 / 2.4) - 0.055)));
@@ -79,6 +89,7 @@ class DemoAsset : public ::testing::Test {
     std::string err, warn;
     loaded_ = loader.LoadBinaryFromFile(model_, &err, &warn, path_);
     loadMessages_ = err + warn;
+    loadWarnings_ = warn;
   }
   static void TearDownTestSuite() {
     delete model_;
@@ -128,7 +139,7 @@ class DemoAsset : public ::testing::Test {
   static std::string path_;
   static tinygltf::Model* model_;
   static bool loaded_;
-  static std::string loadMessages_;
+  static std::string loadMessages_, loadWarnings_;
 };
 
 brdfcl::test::ScratchDir* DemoAsset::scratch_ = nullptr;
@@ -136,9 +147,13 @@ std::string DemoAsset::path_;
 tinygltf::Model* DemoAsset::model_ = nullptr;
 bool DemoAsset::loaded_ = false;
 std::string DemoAsset::loadMessages_;
+std::string DemoAsset::loadWarnings_;
 
-TEST_F(DemoAsset, GlbContainerIsWellFormed) {
-  const std::string glb = readFile(path_);
+TEST(DemoAssetFile, GlbContainerIsWellFormed) {
+  // Its own file: a broken container would also stop tinygltf, and with it the fixture.
+  brdfcl::test::ScratchDir scratch("demo-asset-glb");
+  brdfcl::gltf::writeDemoAsset(scratch.path("demo.glb"));
+  const std::string glb = readFile(scratch.path("demo.glb"));
   ASSERT_GE(glb.size(), 28u);
   EXPECT_EQ(u32(glb, 0), 0x46546C67u);  // "glTF"
   EXPECT_EQ(u32(glb, 4), 2u);
@@ -164,6 +179,7 @@ TEST_F(DemoAsset, GlbContainerIsWellFormed) {
 }
 
 TEST_F(DemoAsset, SpheresHaveTheSweepsLayoutAndFactors) {
+  EXPECT_EQ(loadWarnings_, "");
   const auto& m = model();
   ASSERT_EQ(m.materials.size(), 36u);
   ASSERT_EQ(m.scenes.size(), 1u);
@@ -432,13 +448,6 @@ TEST_F(DemoAsset, FlakeNormalsAreUnitAndTiltedAtMostTwelveDegrees) {
   EXPECT_GT(std::sqrt(tiltSquares / cells - mean * mean), 0.1 * maxTilt);  // they differ
   // Restated from the design: cell (cx, cy) draws lowbias32(cy * 32 + cx); the low 16 bits give
   // the tilt (sqrt for a uniform disc), the high 16 the azimuth.
-  auto lowbias32 = [](std::uint32_t x) {
-    x ^= x >> 16;
-    x *= 0x7feb352du;
-    x ^= x >> 15;
-    x *= 0x846ca68bu;
-    return x ^ (x >> 16);
-  };
   for (const auto& cell : std::vector<std::array<int, 2>>{{0, 0}, {5, 3}, {31, 31}, {17, 29}}) {
     const std::uint32_t h = lowbias32(std::uint32_t(cell[1] * 32 + cell[0]));
     const double tilt = maxTilt * std::sqrt((h & 0xffffu) / 65536.0), azimuth = 2 * kPi * (h >> 16) / 65536.0;
@@ -473,11 +482,18 @@ TEST_F(DemoAsset, BrushedDirectionsAreUnitAndCircular) {
       ASSERT_NEAR(std::hypot(dx, dy), 1.0, std::sqrt(2.0) / 255) << x << "," << y;
       ASSERT_EQ(t[2], 255) << x << "," << y;
       // Tangent to the circle around UV (0.5, 0.5), distances on the sphere (u steps twice as
-      // long as v; tangent-space +Y is -v), so perpendicular to the radius.
-      const V3 radius = normalized({2 * ((x + 0.5) / 256 - 0.5), -((y + 0.5) / 256 - 0.5), 0});
-      ASSERT_NEAR(dx * radius[0] + dy * radius[1], 0.0, 0.01) << x << "," << y;
+      // long as v; tangent-space +Y is -v), so perpendicular to the radius, up to the rings' +-4
+      // degrees.
+      const double a = 2 * ((x + 0.5) / 256 - 0.5), b = -((y + 0.5) / 256 - 0.5), l = std::hypot(a, b);
+      ASSERT_NEAR((dx * a + dy * b) / l, 0.0, std::sin(4.0 * kPi / 180) + 0.006) << x << "," << y;
       // Counter-clockwise: +Y on the right of the centre.
-      ASSERT_GT(radius[0] * dy - radius[1] * dx, 0.99) << x << "," << y;
+      ASSERT_GT((a * dy - b * dx) / l, std::cos(4.0 * kPi / 180) - 0.006) << x << "," << y;
+      // Restated from the design: ring floor(128 l) turns by 4 degrees * (2 h / 65535 - 1), h the
+      // low 16 bits of lowbias32(ring).
+      const double turn = 4.0 * kPi / 180 * (2.0 * (lowbias32(std::uint32_t(l * 128)) & 0xffffu) / 65535.0 - 1);
+      const double ex = -b / l * std::cos(turn) - a / l * std::sin(turn), ey = -b / l * std::sin(turn) + a / l * std::cos(turn);
+      ASSERT_NEAR(t[0], std::lround((ex * 0.5 + 0.5) * 255), 1) << x << "," << y;
+      ASSERT_NEAR(t[1], std::lround((ey * 0.5 + 0.5) * 255), 1) << x << "," << y;
     }
 }
 
@@ -498,7 +514,7 @@ TEST(DemoAssetErrors, UnwritablePathThrowsOneLineAndLeavesNoFile) {
   EXPECT_TRUE(std::filesystem::is_empty(scratch.path("a-directory.glb")));
 }
 
-TEST(DemoAssetErrors, ReplacingAnExistingFileLeavesOnlyTheNewAsset) {
+TEST(DemoAssetFile, ReplacingAnExistingFileLeavesOnlyTheNewAsset) {
   brdfcl::test::ScratchDir scratch("demo-asset-replace");
   { std::ofstream(scratch.path("demo.glb")) << "old contents"; }
   brdfcl::gltf::writeDemoAsset(scratch.path("demo.glb"));

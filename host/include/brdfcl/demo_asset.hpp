@@ -23,7 +23,8 @@ namespace brdfcl::gltf {
 //      degrees, as clearcoatNormalTexture, scale (2, 1), repeat, nearest magnification;
 //    rows 3-4, "brushed" 256x256 RGB anisotropyTexture: RG directions along circles around
 //      UV (0.5, 0.5) (the point facing the camera; circles measured on the sphere, where u spans
-//      twice the length of v), B strength 1; clamped, trilinear;
+//      twice the length of v), each ring one texel wide turned by up to +-4 degrees (streaks),
+//      B strength 1; clamped, trilinear;
 //    row 5 uses factors only.
 void writeDemoAsset(const std::string& path);
 

@@ -36,6 +36,7 @@ constexpr double kThreadHalfWidth = 0.4;  // of the thread pitch; the rest is ga
 constexpr int kFlakeSize = 256, kFlakeCell = 8;
 constexpr double kFlakeMaxTiltDegrees = 12.0;
 constexpr int kBrushedSize = 256;
+constexpr double kBrushJitterDegrees = 4.0;
 
 // glTF enums.
 constexpr int kFloat = 5126, kUnsignedShort = 5123;
@@ -104,7 +105,9 @@ std::vector<std::uint8_t> flakeTexels() {
 }
 
 // Circular brushing around the point that faces the camera. Positions are measured on the sphere
-// near its front, where a step in u is twice as long as a step in v; tangent-space +Y is -v.
+// near its front, where a step in u is twice as long as a step in v; tangent-space +Y is -v. Each
+// ring one texel wide (along u) turns its direction a little, as the grooves of a turned or
+// brushed disc do, so the highlight breaks into streaks.
 std::vector<std::uint8_t> brushedTexels() {
   std::vector<std::uint8_t> rgb(3 * kBrushedSize * kBrushedSize);
   for (int y = 0; y < kBrushedSize; ++y)
@@ -112,9 +115,13 @@ std::vector<std::uint8_t> brushedTexels() {
       const double a = 2.0 * ((x + 0.5) / kBrushedSize - 0.5);  // along T
       const double b = -((y + 0.5) / kBrushedSize - 0.5);       // along B
       const double l = std::hypot(a, b);                        // > 0: texel centres miss (0.5, 0.5)
+      const auto ring = std::uint32_t(l * kBrushedSize / 2);
+      const double jitter =
+          kBrushJitterDegrees * kPi / 180.0 * (2.0 * (hash32(ring) & 0xffffu) / 65535.0 - 1.0);
+      const double dx = -b / l, dy = a / l;
       std::uint8_t* t = &rgb[3 * (std::size_t(y) * kBrushedSize + x)];
-      t[0] = unorm8(0.5 * (-b / l) + 0.5);
-      t[1] = unorm8(0.5 * (a / l) + 0.5);
+      t[0] = unorm8(0.5 * (dx * std::cos(jitter) - dy * std::sin(jitter)) + 0.5);
+      t[1] = unorm8(0.5 * (dx * std::sin(jitter) + dy * std::cos(jitter)) + 0.5);
       t[2] = 255;
     }
   return rgb;
