@@ -24,6 +24,7 @@
 #include <stb/stb_image_write.h>
 
 #include "io/files.hpp"
+#include "io/png.hpp"
 #include "io/exr_header.hpp"
 #include "io/messages.hpp"
 #include "brdfcl/error.hpp"
@@ -238,3 +239,18 @@ void writePng(const std::string& path, int width, int height, const std::vector<
 }
 
 }  // namespace brdfcl
+
+namespace brdfcl::detail {
+
+// Here because stb_image_write is compiled static in this file: a second implementation elsewhere
+// would be a second copy of the encoder.
+std::string encodePng(const std::uint8_t* pixels, int width, int height, int channels) {
+  std::string png;
+  const int ok = stbi_write_png_to_func(
+      [](void* context, void* data, int size) { static_cast<std::string*>(context)->append(static_cast<const char*>(data), size); },
+      &png, width, height, channels, pixels, width * channels);
+  if (!ok) png.clear();
+  return png;
+}
+
+}  // namespace brdfcl::detail
