@@ -55,8 +55,11 @@ const json& Document::object(const json& v, const std::string& path) const {
 double Document::number(const json& obj, const char* key, const std::string& path, double fallback,
                         const char* expected, bool (*ok)(double)) const {
   const json* v = member(obj, key);
-  if (!v) return fallback;
-  const std::string p = join(path, key);
+  return v ? checked(*v, join(path, key), expected, ok) : fallback;
+}
+
+double Document::checked(const json& value, const std::string& p, const char* expected, bool (*ok)(double)) const {
+  const json* v = &value;
   if (!v->is_number()) fail(p, std::string("expected ") + expected + ", got " + brdfcl::detail::describeJson(*v));
   const double d = v->get<double>();
   if (!std::isfinite(d) || !ok(d)) fail(p, std::string("expected ") + expected + ", got " + brdfcl::detail::formatNumber(d));
@@ -86,8 +89,7 @@ std::array<float, N> Document::numbers(const json& obj, const char* key, const s
   if (!v->is_array() || v->size() != N) fail(p, "expected " + expected + ", got " + brdfcl::detail::describeJson(*v));
   std::array<float, N> out{};
   for (std::size_t i = 0; i < N; ++i) {
-    const json wrap = json::object({{"v", (*v)[i]}});
-    out[i] = float(number(wrap, "v", "", 0.0, unit ? "a number in [0, 1]" : "a finite number", unit ? unitRange : any));
+    out[i] = float(checked((*v)[i], at(p, i), unit ? "a number in [0, 1]" : "a finite number", unit ? unitRange : any));
   }
   return out;
 }
@@ -110,14 +112,37 @@ void Document::checkExtensions(std::vector<std::string>& warnings) const {
     for (const auto& n : v) s += (s.empty() ? "" : ", ") + brdfcl::detail::printable(n, 80);
     return s;
   };
-  const std::vector<std::string> required = names("extensionsRequired");
+  std::vector<std::string> required = names("extensionsRequired");
+  std::string why;
+  if (std::find(required.begin(), required.end(), "KHR_texture_basisu") == required.end() && ktx2WithoutFallback()) {
+    required.push_back("KHR_texture_basisu");
+    why = " (not listed there, but its textures are KTX2 images without a PNG/JPEG fallback)";
+  }
   if (!required.empty())
-    fail("extensionsRequired", "brdfcl does not support " + listed(required) +
+    fail("extensionsRequired", "brdfcl does not support " + listed(required) + why +
                                    "; use a version of the model without them (e.g. PNG/JPEG textures instead of KTX2)");
   const std::vector<std::string> used = names("extensionsUsed");
   if (!used.empty())
     warnings.push_back(source_ + ": extensionsUsed: brdfcl ignores " + listed(used) +
                        "; the render leaves out what they add");
+}
+
+// Exporters have written KTX2 images as a texture's plain "source" without listing
+// KHR_texture_basisu as required; such a file cannot be shown without the extension either.
+bool Document::ktx2WithoutFallback() const {
+  const json* textures = member(doc_, "textures");
+  const json* images = member(doc_, "images");
+  if (!textures || !images || !textures->is_array() || !images->is_array()) return false;
+  for (const json& t : *textures) {
+    const json* s = member(t, "source");
+    if (!s || !s->is_number_integer() || s->get<long long>() < 0 || std::size_t(s->get<long long>()) >= images->size()) continue;
+    const json& img = (*images)[std::size_t(s->get<long long>())];
+    const json* uri = member(img, "uri");
+    const json* mime = member(img, "mimeType");
+    const auto endsKtx2 = [](const std::string& u) { return u.size() >= 5 && u.compare(u.size() - 5, 5, ".ktx2") == 0; };
+    if ((uri && uri->is_string() && endsKtx2(uri->get<std::string>())) || (mime && *mime == "image/ktx2")) return true;
+  }
+  return false;
 }
 
 std::vector<Sampler> Document::samplers() const {

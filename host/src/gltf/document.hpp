@@ -21,6 +21,7 @@ class Document {
 
   // extensionsRequired that brdfcl lacks are an error; extensionsUsed it ignores, one warning.
   void checkExtensions(std::vector<std::string>& warnings) const;
+  bool ktx2WithoutFallback() const;
   std::vector<Sampler> samplers() const;
   std::vector<Texture> textures(std::size_t imageCount, std::size_t samplerCount) const;
   std::vector<Material> materials(std::size_t textureCount) const;
@@ -36,6 +37,7 @@ class Document {
  private:
   const nlohmann::json* member(const nlohmann::json& obj, const char* key) const;
   const nlohmann::json& object(const nlohmann::json& v, const std::string& path) const;
+  double checked(const nlohmann::json& v, const std::string& path, const char* expected, bool (*ok)(double)) const;
   double number(const nlohmann::json& obj, const char* key, const std::string& path, double fallback,
                 const char* expected, bool (*ok)(double)) const;
   int index(const nlohmann::json& obj, const char* key, const std::string& path, int fallback, std::size_t count,

@@ -39,7 +39,8 @@ V3 anyPerpendicular(const V3& n) {
 
 V3 load3(const std::vector<float>& v, std::size_t i) { return {v[3 * i], v[3 * i + 1], v[3 * i + 2]}; }
 
-// Sums for one vertex and one UV handedness (0: counter-clockwise in UV space, 1: mirrored).
+// Sums for one vertex and one UV handedness (0: as an unmirrored glTF texture, whose v runs down
+// the image, is laid out: clockwise in (u, v); 1: mirrored).
 struct Sum {
   V3 t{0, 0, 0}, b{0, 0, 0};
   bool used = false;
@@ -104,7 +105,7 @@ void generateTangents(Primitive& p, int uvSet) {
     const V3 e1 = sub(P[1], P[0]), e2 = sub(P[2], P[0]);
     const V3 T = mul(sub(mul(e1, t2), mul(e2, t1)), 1.0 / area);  // dP/du
     const V3 B = mul(sub(mul(e2, s1), mul(e1, s2)), 1.0 / area);  // dP/dv
-    const int side = area > 0 ? 0 : 1;
+    const int side = area < 0 ? 0 : 1;
     triangleSide[t / 3] = std::uint8_t(side);
     for (int k = 0; k < 3; ++k) {
       const V3& nrm = normals[idx[k]];
