@@ -4,6 +4,7 @@
 // decoded images, camera nodes and KHR_lights_punctual lights. Conventions in docs/gltf.md.
 #pragma once
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -144,11 +145,21 @@ struct Asset {
 struct LoadOptions {
   int scene = -1;       // -1 = the file's default scene, else scene 0
   std::string variant;  // KHR_materials_variants name; "" = the default materials
+  // Bounds against hostile files, checked before allocating (the fuzz harness lowers them): the
+  // world-space vertices plus triangles of all primitives together, and the pixels of one image.
+  std::size_t maxElements = std::size_t(1) << 28;
+  std::size_t maxImagePixels = std::size_t(1) << 28;
 };
 
 // Loads a .gltf (external or data-URI buffers and images) or .glb file and the scene chosen.
 // Every failure is a one-line brdfcl::Error naming the file and the JSON path or object index,
 // e.g. "chair.gltf: accessors[3]: bufferView 9 does not exist (the file has 4)".
 Asset load(const std::string& path, const LoadOptions& options = {});
+
+// The same from the bytes of a .gltf or .glb (told apart by the GLB magic); `name` prefixes
+// messages, external buffers and images resolve against baseDir ("" = the current directory).
+// load() reads the file and calls this; the fuzz harness calls it directly.
+Asset loadFromMemory(const std::string& bytes, const std::string& name, const std::string& baseDir,
+                     const LoadOptions& options = {});
 
 }  // namespace brdfcl::gltf

@@ -1,0 +1,339 @@
+// brdfcl::gltf::load: .gltf/.glb through tinygltf into world-space triangle lists (gltf.hpp).
+// brdfcl checks what tinygltf trusts (the GLB header, buffer view ranges, the node graph) before
+// tinygltf or the walk relies on it, and owns file reading and image decoding through tinygltf's
+// callbacks, so that every failure is one line naming the file and the JSON path.
+#include <sys/stat.h>
+#include <tiny_gltf.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "brdfcl/error.hpp"
+#include "brdfcl/gltf.hpp"
+#include "gltf/accessors.hpp"
+#include "gltf/document.hpp"
+#include "gltf/images.hpp"
+#include "gltf/tangents.hpp"
+#include "io/files.hpp"
+#include "io/messages.hpp"
+
+namespace brdfcl::gltf {
+namespace {
+
+using json = nlohmann::json;
+using brdfcl::detail::printable;
+
+constexpr std::uint32_t kGlbMagic = 0x46546C67;  // "glTF"
+constexpr std::uint32_t kChunkJson = 0x4E4F534A, kChunkBin = 0x004E4942;
+
+std::string at(const char* kind, std::size_t i) { return std::string(kind) + "[" + std::to_string(i) + "]"; }
+
+// What the tinygltf callbacks share with the loader.
+struct Context {
+  std::string source;   // the file name as messages show it
+  std::string baseDir;
+  LoadOptions options;
+  std::map<std::string, std::string> labels;     // resolved path of an external file -> "buffers[0]"
+  std::map<std::string, std::string> uris;       // resolved path -> uri as written
+  std::map<std::string, std::uint64_t> lengths;  // resolved path of a buffer -> its byteLength
+  std::vector<bool> imageUsed;                   // by a texture: only those are decoded
+  std::vector<Image> images;
+  std::string error;  // the first failure seen in a callback; it wins over tinygltf's own text
+
+  [[noreturn]] void fail(const std::string& where, const std::string& message) const {
+    throw Error(source + ": " + where + ": " + message);
+  }
+};
+
+std::uint32_t le32(const std::string& b, std::size_t at) {
+  return std::uint32_t(std::uint8_t(b[at])) | std::uint32_t(std::uint8_t(b[at + 1])) << 8 |
+         std::uint32_t(std::uint8_t(b[at + 2])) << 16 | std::uint32_t(std::uint8_t(b[at + 3])) << 24;
+}
+
+// The GLB container, checked completely (tinygltf trusts the BIN chunk's length); returns the
+// JSON chunk and sets binSize (0 when there is no BIN chunk).
+std::string glbJson(const std::string& b, const std::string& source, std::size_t& binSize) {
+  auto bad = [&](const std::string& what) { throw Error(source + ": " + what); };
+  if (b.size() < 12) bad("truncated GLB file (" + std::to_string(b.size()) + " bytes, shorter than the 12-byte header); re-export the file");
+  if (le32(b, 4) != 2)
+    bad("unsupported GLB version " + std::to_string(le32(b, 4)) + "; brdfcl reads glTF 2.0 binaries (version 2)");
+  const std::uint64_t length = le32(b, 8);
+  if (length > b.size())
+    bad("truncated GLB file: the header says " + std::to_string(length) + " bytes, the file has " +
+        std::to_string(b.size()) + "; download or export it again");
+  if (length < b.size())
+    bad("the GLB header says " + std::to_string(length) + " bytes, but the file has " + std::to_string(b.size()) +
+        "; re-export the file");
+  if (length < 20) bad("truncated GLB file: no room for the JSON chunk; re-export the file");
+  const std::uint64_t jsonLength = le32(b, 12);
+  if (le32(b, 16) != kChunkJson) bad("GLB chunk 0 is not JSON; re-export the file");
+  if (jsonLength == 0 || 20 + jsonLength > length)
+    bad("truncated GLB chunk 0 (JSON): it claims " + std::to_string(jsonLength) + " bytes, " +
+        std::to_string(length - 20) + " remain; re-export the file");
+  const std::uint64_t next = 20 + jsonLength;
+  binSize = 0;
+  if (next < length) {
+    if (length - next < 8) bad("truncated GLB chunk 1: its 8-byte header is cut off; re-export the file");
+    const std::uint64_t binLength = le32(b, std::size_t(next));
+    if (le32(b, std::size_t(next + 4)) != kChunkBin) bad("GLB chunk 1 is not BIN; re-export the file");
+    if (binLength > length - next - 8)
+      bad("truncated GLB chunk 1 (BIN): it claims " + std::to_string(binLength) + " bytes, " +
+          std::to_string(length - next - 8) + " remain; re-export the file");
+    if (binLength < 4 || binLength % 4 != 0)
+      bad("GLB chunk 1 (BIN) has " + std::to_string(binLength) + " bytes, not a non-zero multiple of 4; re-export the file");
+    binSize = std::size_t(binLength);
+  }
+  return b.substr(20, std::size_t(jsonLength));
+}
+
+json parseJson(const std::string& text, const std::string& source) {
+  json doc;
+  try {
+    doc = json::parse(text);
+  } catch (const json::exception& e) {
+    throw Error(source + ": invalid JSON: " + printable(brdfcl::detail::withoutJsonTag(e.what()), 300) +
+                "; the file is not glTF 2.0 or is corrupt");
+  }
+  if (!doc.is_object()) throw Error(source + ": expected a glTF JSON object at the top level, got " + brdfcl::detail::describeJson(doc));
+  return doc;
+}
+
+// tinygltf's own file-name decoding, so that its paths can be mapped back to buffers[i]/images[i].
+std::string urlDecode(const std::string& s) {
+  auto hex = [](char c) -> int {
+    if (c >= '0' && c <= '9') return c - '0';
+    if (c >= 'a' && c <= 'f') return c - 'a' + 10;
+    if (c >= 'A' && c <= 'F') return c - 'A' + 10;
+    return 0;
+  };
+  std::string out;
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    if (s[i] == '+') out += ' ';
+    else if (s[i] == '%' && s.size() > i + 2) {
+      out += char((hex(s[i + 1]) << 4) | hex(s[i + 2]));
+      i += 2;
+    } else out += s[i];
+  }
+  return out;
+}
+
+std::string resolved(const std::string& baseDir, const std::string& uri) {
+  const std::string f = urlDecode(uri);
+  if (baseDir.empty()) return f;
+  return baseDir.back() == '/' ? baseDir + f : baseDir + "/" + f;
+}
+
+bool isDataUri(const std::string& uri) { return uri.rfind("data:", 0) == 0; }
+
+std::uint64_t unsignedAt(const Context& ctx, const json& obj, const char* key, const std::string& path, bool required) {
+  const auto it = obj.find(key);
+  if (it == obj.end()) {
+    if (required) ctx.fail(path, std::string("missing \"") + key + "\"; re-export the file");
+    return 0;
+  }
+  if (!it->is_number_unsigned() && !(it->is_number_integer() && it->get<long long>() >= 0))
+    ctx.fail(path + "." + key, "expected an integer >= 0, got " + brdfcl::detail::describeJson(*it));
+  return it->get<std::uint64_t>();
+}
+
+// Buffers and buffer views as the JSON declares them, checked before tinygltf slices buffers by
+// them (it does not check image buffer views), and the external files named, for messages.
+void checkBuffers(const json& doc, Context& ctx, bool glb, std::size_t binSize) {
+  std::vector<std::uint64_t> lengths;
+  if (const auto it = doc.find("buffers"); it != doc.end() && it->is_array()) {
+    for (std::size_t i = 0; i < it->size(); ++i) {
+      const json& b = (*it)[i];
+      const std::string path = at("buffers", i);
+      if (!b.is_object()) ctx.fail(path, "expected an object, got " + brdfcl::detail::describeJson(b));
+      const std::uint64_t length = unsignedAt(ctx, b, "byteLength", path, true);
+      lengths.push_back(length);
+      const auto uri = b.find("uri");
+      if (uri == b.end() || !uri->is_string()) {
+        if (!glb || i != 0) ctx.fail(path, "no \"uri\" (only the first buffer of a .glb may omit it); re-export the file");
+        if (length > binSize)
+          ctx.fail(path + ".byteLength", std::to_string(length) + " is more than the " + std::to_string(binSize) +
+                                             " bytes of the GLB's BIN chunk; re-export the file");
+        continue;
+      }
+      const std::string u = uri->get<std::string>();
+      if (isDataUri(u)) continue;
+      const std::string p = resolved(ctx.baseDir, u);
+      ctx.labels[p] = path;
+      ctx.uris[p] = u;
+      ctx.lengths[p] = length;
+    }
+  }
+  if (const auto it = doc.find("bufferViews"); it != doc.end() && it->is_array()) {
+    for (std::size_t i = 0; i < it->size(); ++i) {
+      const json& v = (*it)[i];
+      const std::string path = at("bufferViews", i);
+      if (!v.is_object()) ctx.fail(path, "expected an object, got " + brdfcl::detail::describeJson(v));
+      const std::uint64_t buffer = unsignedAt(ctx, v, "buffer", path, true);
+      if (buffer >= lengths.size())
+        ctx.fail(path + ".buffer", "buffer " + std::to_string(buffer) + " does not exist (the file has " +
+                                       std::to_string(lengths.size()) + "); re-export the file");
+      const std::uint64_t offset = unsignedAt(ctx, v, "byteOffset", path, false);
+      const std::uint64_t length = unsignedAt(ctx, v, "byteLength", path, true);
+      if (length == 0) ctx.fail(path + ".byteLength", "expected at least 1, got 0; re-export the file");
+      if (offset > lengths[buffer] || length > lengths[buffer] - offset)
+        ctx.fail(path, "bytes " + std::to_string(offset) + " + " + std::to_string(length) + " lie outside buffers[" +
+                           std::to_string(buffer) + "] of " + std::to_string(lengths[buffer]) + " bytes; re-export the file");
+    }
+  }
+}
+
+std::string imageLabel(const json& img, std::size_t i) {
+  std::string name;
+  if (const auto u = img.find("uri"); u != img.end() && u->is_string() && !isDataUri(u->get<std::string>()))
+    name = u->get<std::string>();
+  else if (const auto n = img.find("name"); n != img.end() && n->is_string())
+    name = n->get<std::string>();
+  return name.empty() ? at("images", i) : at("images", i) + " ('" + printable(name, 120) + "')";
+}
+
+void registerImages(const json& doc, Context& ctx) {
+  const auto images = doc.find("images");
+  const std::size_t count = images != doc.end() && images->is_array() ? images->size() : 0;
+  ctx.imageUsed.assign(count, false);
+  ctx.images.assign(count, Image{});
+  for (std::size_t i = 0; i < count; ++i) {
+    const json& img = (*images)[i];
+    if (!img.is_object()) continue;
+    ctx.images[i].name = at("images", i);
+    if (const auto u = img.find("uri"); u != img.end() && u->is_string()) {
+      const std::string uri = u->get<std::string>();
+      if (!isDataUri(uri)) {
+        ctx.images[i].name = uri;
+        ctx.labels[resolved(ctx.baseDir, uri)] = imageLabel(img, i);
+        ctx.uris[resolved(ctx.baseDir, uri)] = uri;
+      }
+    }
+  }
+  if (const auto tex = doc.find("textures"); tex != doc.end() && tex->is_array())
+    for (const json& t : *tex)
+      if (const auto s = t.is_object() ? t.find("source") : t.end(); t.is_object() && s != t.end() && s->is_number_integer())
+        if (s->get<long long>() >= 0 && std::size_t(s->get<long long>()) < count) ctx.imageUsed[std::size_t(s->get<long long>())] = true;
+}
+
+// --- tinygltf callbacks ---------------------------------------------------------------------
+
+bool fileExists(const std::string&, void*) { return true; }  // so that a missing file reaches readFile
+std::string expandPath(const std::string& p, void*) { return p; }  // no shell-style expansion of file names
+bool writeFile(std::string*, const std::string&, const std::vector<unsigned char>&, void*) { return false; }
+
+bool readFile(std::vector<unsigned char>* out, std::string* err, const std::string& path, void* user) {
+  Context& ctx = *static_cast<Context*>(user);
+  const auto label = ctx.labels.find(path);
+  const std::string where = label != ctx.labels.end() ? label->second + ": " : "";
+  const std::string shown = printable(ctx.uris.count(path) ? ctx.uris[path] : path, 200);
+  std::string data;
+  if (const int e = brdfcl::detail::readWholeFile(path, data)) {
+    if (ctx.error.empty()) ctx.error = ctx.source + ": " + where + "cannot read '" + shown + "': " + std::strerror(e);
+    if (err) *err = std::strerror(e);
+    return false;
+  }
+  if (const auto len = ctx.lengths.find(path); len != ctx.lengths.end() && data.size() != len->second) {
+    if (ctx.error.empty())
+      ctx.error = ctx.source + ": " + where + "'" + shown + "' has " + std::to_string(data.size()) +
+                  " bytes, but byteLength says " + std::to_string(len->second) + "; re-export the file";
+    return false;
+  }
+  out->assign(data.begin(), data.end());
+  return true;
+}
+
+bool decodeImage(tinygltf::Image*, const int index, std::string*, std::string*, int, int, const unsigned char* bytes,
+                 int size, void* user) {
+  Context& ctx = *static_cast<Context*>(user);
+  if (index < 0 || std::size_t(index) >= ctx.images.size() || !ctx.imageUsed[std::size_t(index)]) return true;
+  Image& img = ctx.images[std::size_t(index)];
+  std::string reason;
+  if (size <= 0 || !detail::decodeImage(bytes, std::size_t(size), ctx.options.maxImagePixels, img, reason)) {
+    if (ctx.error.empty())
+      ctx.error = ctx.source + ": " + at("images", std::size_t(index)) +
+                  (img.name.rfind("images[", 0) == 0 ? "" : " ('" + printable(img.name, 120) + "')") +
+                  ": cannot decode the image (" + printable(reason.empty() ? "no data" : reason, 120) +
+                  "); save it as PNG or JPEG";
+    return false;
+  }
+  return true;
+}
+
+// tinygltf's error text, several lines sometimes, as one line.
+std::string oneLine(const std::string& text) {
+  std::string out;
+  std::size_t start = 0;
+  while (start < text.size()) {
+    std::size_t end = text.find('\n', start);
+    if (end == std::string::npos) end = text.size();
+    std::string line = text.substr(start, end - start);
+    while (!line.empty() && (line.back() == '\r' || line.back() == ' ')) line.pop_back();
+    if (!line.empty()) out += (out.empty() ? "" : "; ") + line;
+    start = end + 1;
+  }
+  return printable(out.empty() ? "unknown error" : out, 300);
+}
+
+}  // namespace
+
+namespace detail {
+// Implemented in scene_walk.cpp: the node walk and primitive assembly.
+void buildScene(const tinygltf::Model& model, const Document& doc, const LoadOptions& options, Asset& asset);
+}  // namespace detail
+
+Asset loadFromMemory(const std::string& bytes, const std::string& name, const std::string& baseDir,
+                     const LoadOptions& options) {
+  Context ctx;
+  ctx.source = printable(name, 300);
+  ctx.baseDir = baseDir;
+  ctx.options = options;
+  if (bytes.size() > 0xFFFFFFF0u) throw Error(ctx.source + ": the file is larger than 4 GiB; brdfcl reads glTF files up to 4 GiB");
+  const bool glb = bytes.size() >= 4 && le32(bytes, 0) == kGlbMagic;
+  std::size_t binSize = 0;
+  const json doc = parseJson(glb ? glbJson(bytes, ctx.source, binSize) : bytes, ctx.source);
+  Asset asset;
+  asset.path = name;
+  const detail::Document document(doc, ctx.source);
+  document.checkExtensions(asset.warnings);  // before tinygltf meets images it cannot decode (KTX2)
+  checkBuffers(doc, ctx, glb, binSize);
+  registerImages(doc, ctx);
+
+  tinygltf::TinyGLTF reader;
+  reader.SetImageLoader(&decodeImage, &ctx);
+  reader.SetFsCallbacks(tinygltf::FsCallbacks{&fileExists, &expandPath, &readFile, &writeFile, &ctx});
+  tinygltf::Model model;
+  std::string err, warn;
+  const auto* data = reinterpret_cast<const unsigned char*>(bytes.data());
+  const bool ok = glb ? reader.LoadBinaryFromMemory(&model, &err, &warn, data, unsigned(bytes.size()), baseDir)
+                      : reader.LoadASCIIFromString(&model, &err, &warn, bytes.data(), unsigned(bytes.size()), baseDir);
+  if (!ctx.error.empty()) throw Error(ctx.error);
+  if (!ok) throw Error(ctx.source + ": " + oneLine(err) + "; the file is not valid glTF 2.0: re-export it");
+
+  asset.samplers = document.samplers();
+  asset.images = std::move(ctx.images);
+  asset.textures = document.textures(asset.images.size(), asset.samplers.size());
+  asset.materials = document.materials(asset.textures.size());
+  asset.variants = document.variants();
+  detail::buildScene(model, document, options, asset);
+  return asset;
+}
+
+Asset load(const std::string& path, const LoadOptions& options) {
+  std::string bytes;
+  if (const int e = brdfcl::detail::readWholeFile(path, bytes))
+    throw Error("cannot read '" + printable(path, 300) + "': " + std::strerror(e));
+  const std::size_t slash = path.find_last_of('/');
+  const std::string base = slash == std::string::npos ? "" : path.substr(0, slash + 1);
+  const bool glbName = path.size() >= 4 && path.compare(path.size() - 4, 4, ".glb") == 0;
+  if (glbName && (bytes.size() < 4 || le32(bytes, 0) != kGlbMagic))
+    throw Error(printable(path, 300) + ": not a GLB file (no glTF magic number); a .glb must start with 'glTF'");
+  return loadFromMemory(bytes, path, base, options);
+}
+
+}  // namespace brdfcl::gltf

@@ -1,0 +1,38 @@
+// Where the real glTF sample assets are (/work/shared/assets style, see its README): $BRDFCL_ASSETS,
+// else <source dir>/../shared/assets. Tests that need them skip, naming BRDFCL_ASSETS, when absent.
+#pragma once
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+
+namespace brdfcl::test {
+
+// The assets folder, or "" when there is none.
+inline std::string assetsDir() {
+  namespace fs = std::filesystem;
+  if (const char* e = std::getenv("BRDFCL_ASSETS"); e && *e) return fs::is_directory(e) ? std::string(e) : std::string();
+#ifdef BRDFCL_SOURCE_DIR
+  const fs::path p = fs::path(BRDFCL_SOURCE_DIR) / ".." / "shared" / "assets";
+  if (fs::is_directory(p)) return fs::weakly_canonical(p).string();
+#endif
+  return {};
+}
+
+// The path of `relative` inside the assets folder, or "" when it is missing.
+inline std::string assetPath(const std::string& relative) {
+  const std::string dir = assetsDir();
+  if (dir.empty()) return {};
+  const std::string p = dir + "/" + relative;
+  return std::filesystem::exists(p) ? p : std::string();
+}
+
+// Why a test skips: `if (p.empty()) GTEST_SKIP() << missingAsset("X/y.glb");`
+inline std::string missingAsset(const std::string& relative) {
+  return "glTF sample asset '" + relative + "' not found: set BRDFCL_ASSETS to the assets folder (default " +
+         "<source dir>/../shared/assets; see its README.md)";
+}
+
+}  // namespace brdfcl::test
+
