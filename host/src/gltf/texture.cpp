@@ -1,0 +1,247 @@
+// Mip chains and sampling of glTF textures: linearization (sRGB for colour slots), box-filtered
+// levels in linear space, KHR_texture_transform, glTF wrap and filter modes and the ray-cone
+// level of detail. Conventions in docs/gltf.md, Rendering.
+#include "gltf/texture.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "brdfcl/error.hpp"
+
+namespace brdfcl::gltf {
+namespace {
+
+constexpr unsigned kR = 1, kG = 2, kB = 4, kA = 8, kRgb = kR | kG | kB;
+
+// Every 16-bit code decoded once: sRGB images are sampled millions of times but built once.
+const std::vector<float>& srgbTable() {
+  static const std::vector<float> table = [] {
+    std::vector<float> t(65536);
+    for (int i = 0; i < 65536; ++i) t[i] = srgbToLinear(static_cast<float>(i) / 65535.0f);
+    return t;
+  }();
+  return table;
+}
+
+// One box-filter step along one axis: destination texel i averages the source interval
+// [i r, (i + 1) r), r = src / dst, with fractional weights at its ends, so odd sizes (r = 2 + 1/dst)
+// keep every source texel's full weight.
+void downsampleAxis(const std::vector<float>& src, int sw, int sh, int count, bool alongX, std::vector<float>& dst,
+                    int& dw, int& dh) {
+  const int n = alongX ? sw : sh;
+  const int m = std::max(1, n / 2);
+  dw = alongX ? m : sw;
+  dh = alongX ? sh : m;
+  dst.assign(static_cast<std::size_t>(dw) * dh * count, 0.0f);
+  const double r = static_cast<double>(n) / m;
+  for (int i = 0; i < m; ++i) {
+    const double a = i * r, b = (i + 1) * r;
+    for (int j = static_cast<int>(std::floor(a)); j < n && j < b; ++j) {
+      const float w = static_cast<float>((std::min<double>(j + 1, b) - std::max<double>(j, a)) / r);
+      if (w <= 0.0f) continue;
+      if (alongX) {
+        for (int y = 0; y < sh; ++y)
+          for (int c = 0; c < count; ++c)
+            dst[(static_cast<std::size_t>(y) * dw + i) * count + c] += w * src[(static_cast<std::size_t>(y) * sw + j) * count + c];
+      } else {
+        for (int x = 0; x < sw; ++x)
+          for (int c = 0; c < count; ++c)
+            dst[(static_cast<std::size_t>(i) * dw + x) * count + c] += w * src[(static_cast<std::size_t>(j) * sw + x) * count + c];
+      }
+    }
+  }
+}
+
+std::vector<std::uint16_t> quantize(const std::vector<float>& v) {
+  std::vector<std::uint16_t> q(v.size());
+  for (std::size_t i = 0; i < v.size(); ++i)
+    q[i] = static_cast<std::uint16_t>(std::lround(std::clamp(v[i], 0.0f, 1.0f) * 65535.0f));
+  return q;
+}
+
+MipChain buildChain(const Image& image, unsigned channels, ColorSpace space) {
+  MipChain chain;
+  chain.channels = channels;
+  for (int c = 0; c < 4; ++c)
+    if (channels & (1u << c)) chain.slot[c] = chain.count++;
+  const int count = chain.count;
+  const std::vector<float>& srgb = srgbTable();
+  int w = image.width, h = image.height;
+  std::vector<float> level(static_cast<std::size_t>(w) * h * count);
+  for (std::size_t t = 0; t < static_cast<std::size_t>(w) * h; ++t)
+    for (int c = 0; c < 4; ++c)
+      if (chain.slot[c] >= 0) {
+        const std::uint16_t code = image.rgba[t * 4 + c];
+        // Alpha is linear even in sRGB textures (glTF baseColorTexture).
+        level[t * count + chain.slot[c]] =
+            (space == ColorSpace::Srgb && c < 3) ? srgb[code] : static_cast<float>(code) / 65535.0f;
+      }
+  chain.levels.push_back({w, h, quantize(level)});
+  std::vector<float> tmp, next;
+  while (w > 1 || h > 1) {
+    int tw = w, th = h, nw = w, nh = h;
+    if (w > 1) {
+      downsampleAxis(level, w, h, count, true, tmp, tw, th);
+    } else {
+      tmp = level;
+    }
+    if (th > 1) {
+      downsampleAxis(tmp, tw, th, count, false, next, nw, nh);
+    } else {
+      next = tmp;
+      nw = tw;
+      nh = th;
+    }
+    level.swap(next);
+    w = nw;
+    h = nh;
+    chain.levels.push_back({w, h, quantize(level)});
+  }
+  return chain;
+}
+
+int wrapIndex(int i, int n, Wrap mode) {
+  switch (mode) {
+    case Wrap::ClampToEdge:
+      return std::clamp(i, 0, n - 1);
+    case Wrap::MirroredRepeat: {
+      int k = i % (2 * n);
+      if (k < 0) k += 2 * n;
+      return k < n ? k : 2 * n - 1 - k;
+    }
+    case Wrap::Repeat:
+    default: {
+      int k = i % n;
+      return k < 0 ? k + n : k;
+    }
+  }
+}
+
+// Texel coordinates far outside the image only matter modulo the (mirrored) period; bounding
+// them keeps the float -> int conversion defined.
+float boundCoord(float x) { return std::clamp(x, -1.0e8f, 1.0e8f); }
+
+void fetch(const MipChain& chain, int level, const Sampler& s, bool nearest, float u, float v, float out[4]) {
+  const MipChain::Level& L = chain.levels[level];
+  const int count = chain.count;
+  auto texel = [&](int i, int j) {
+    return &L.texels[(static_cast<std::size_t>(wrapIndex(j, L.height, s.wrapT)) * L.width +
+                      wrapIndex(i, L.width, s.wrapS)) * count];
+  };
+  float acc[4] = {0, 0, 0, 0};
+  if (nearest) {
+    const std::uint16_t* t = texel(static_cast<int>(std::floor(boundCoord(u * L.width))),
+                                   static_cast<int>(std::floor(boundCoord(v * L.height))));
+    for (int c = 0; c < count; ++c) acc[c] = t[c];
+  } else {
+    const float x = boundCoord(u * L.width - 0.5f), y = boundCoord(v * L.height - 0.5f);
+    const float x0 = std::floor(x), y0 = std::floor(y);
+    const float fx = x - x0, fy = y - y0;
+    const int i = static_cast<int>(x0), j = static_cast<int>(y0);
+    const std::uint16_t *t00 = texel(i, j), *t10 = texel(i + 1, j), *t01 = texel(i, j + 1), *t11 = texel(i + 1, j + 1);
+    for (int c = 0; c < count; ++c)
+      acc[c] = (1 - fy) * ((1 - fx) * t00[c] + fx * t10[c]) + fy * ((1 - fx) * t01[c] + fx * t11[c]);
+  }
+  for (int c = 0; c < count; ++c) out[c] = acc[c] * (1.0f / 65535.0f);
+}
+
+}  // namespace
+
+float srgbToLinear(float c) {
+  return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
+}
+
+std::size_t MipChain::bytes() const {
+  std::size_t b = 0;
+  for (const Level& L : levels) b += L.texels.size() * sizeof(std::uint16_t);
+  return b;
+}
+
+Textures::Textures(const Asset& asset) : textures_(asset.textures), samplers_(asset.samplers) {
+  const int nImages = static_cast<int>(asset.images.size());
+  std::vector<unsigned> need(2 * asset.images.size(), 0u);
+  for (std::size_t mi = 0; mi < asset.materials.size(); ++mi) {
+    const Material& m = asset.materials[mi];
+    auto use = [&](const TextureRef& ref, const char* slot, ColorSpace space, unsigned channels) {
+      if (!ref.present()) return;
+      if (ref.texture >= static_cast<int>(asset.textures.size()))
+        throw Error("materials[" + std::to_string(mi) + "]." + slot + ": texture " + std::to_string(ref.texture) +
+                    " does not exist (the asset has " + std::to_string(asset.textures.size()) + ")");
+      const Texture& t = asset.textures[ref.texture];
+      if (t.image < 0 || t.image >= nImages)
+        throw Error("textures[" + std::to_string(ref.texture) + "]: image " + std::to_string(t.image) +
+                    " does not exist (the asset has " + std::to_string(nImages) + ")");
+      if (t.sampler >= static_cast<int>(asset.samplers.size()))
+        throw Error("textures[" + std::to_string(ref.texture) + "]: sampler " + std::to_string(t.sampler) +
+                    " does not exist (the asset has " + std::to_string(asset.samplers.size()) + ")");
+      const Image& img = asset.images[t.image];
+      if (img.width <= 0 || img.height <= 0 ||
+          img.rgba.size() != static_cast<std::size_t>(img.width) * img.height * 4)
+        throw Error("images[" + std::to_string(t.image) + "] '" + img.name + "': " + std::to_string(img.rgba.size()) +
+                    " values for " + std::to_string(img.width) + "x" + std::to_string(img.height) + " RGBA texels");
+      need[2 * t.image + static_cast<int>(space)] |= channels;
+    };
+    use(m.baseColorTexture, "baseColorTexture", ColorSpace::Srgb, kRgb | (m.alphaMode != AlphaMode::Opaque ? kA : 0u));
+    use(m.metallicRoughnessTexture, "metallicRoughnessTexture", ColorSpace::Linear, kG | kB);
+    use(m.normalTexture, "normalTexture", ColorSpace::Linear, kRgb);
+    use(m.occlusionTexture, "occlusionTexture", ColorSpace::Linear, kR);
+    use(m.emissiveTexture, "emissiveTexture", ColorSpace::Srgb, kRgb);
+    use(m.sheenColorTexture, "sheenColorTexture", ColorSpace::Srgb, kRgb);
+    use(m.sheenRoughnessTexture, "sheenRoughnessTexture", ColorSpace::Linear, kA);
+    use(m.clearcoatTexture, "clearcoatTexture", ColorSpace::Linear, kR);
+    use(m.clearcoatRoughnessTexture, "clearcoatRoughnessTexture", ColorSpace::Linear, kG);
+    use(m.clearcoatNormalTexture, "clearcoatNormalTexture", ColorSpace::Linear, kRgb);
+    use(m.anisotropyTexture, "anisotropyTexture", ColorSpace::Linear, kRgb);
+  }
+  chains_.resize(need.size());
+  for (std::size_t k = 0; k < need.size(); ++k)
+    if (need[k]) chains_[k] = buildChain(asset.images[k / 2], need[k], static_cast<ColorSpace>(k % 2));
+}
+
+std::size_t Textures::bytes() const {
+  std::size_t b = 0;
+  for (const MipChain& c : chains_) b += c.bytes();
+  return b;
+}
+
+std::array<float, 4> Textures::sample(const TextureRef& ref, ColorSpace space, float u, float v, float coneLod) const {
+  const Texture& tex = textures_[ref.texture];
+  const MipChain& chain = chains_[2 * tex.image + static_cast<int>(space)];
+  static const Sampler kDefault;
+  const Sampler& s = tex.sampler >= 0 ? samplers_[tex.sampler] : kDefault;
+
+  const TextureTransform& tr = ref.transform;
+  const float x = tr.scale[0] * u, y = tr.scale[1] * v;
+  const float c = std::cos(tr.rotation), sn = std::sin(tr.rotation);
+  const float ut = c * x + sn * y + tr.offset[0];
+  const float vt = -sn * x + c * y + tr.offset[1];
+
+  const MipChain::Level& base = chain.levels[0];
+  const float lod = coneLod + 0.5f * std::log2(static_cast<float>(base.width) * base.height) +
+                    0.5f * std::log2(std::fabs(tr.scale[0] * tr.scale[1]));
+  float vals[4] = {0, 0, 0, 0};
+  const int last = static_cast<int>(chain.levels.size()) - 1;
+  if (!(lod > 0.0f)) {  // magnification (NaN included)
+    fetch(chain, 0, s, s.magNearest, ut, vt, vals);
+  } else if (!s.mipmaps) {
+    fetch(chain, 0, s, s.minNearest, ut, vt, vals);
+  } else if (s.mipNearest) {
+    fetch(chain, std::min(last, static_cast<int>(std::lround(lod))), s, s.minNearest, ut, vt, vals);
+  } else {
+    const float l = std::min(lod, static_cast<float>(last));
+    const int l0 = static_cast<int>(std::floor(l)), l1 = std::min(last, l0 + 1);
+    const float f = l - l0;
+    fetch(chain, l0, s, s.minNearest, ut, vt, vals);
+    if (f > 0.0f && l1 != l0) {
+      float upper[4];
+      fetch(chain, l1, s, s.minNearest, ut, vt, upper);
+      for (int k = 0; k < chain.count; ++k) vals[k] += f * (upper[k] - vals[k]);
+    }
+  }
+  std::array<float, 4> out{0.0f, 0.0f, 0.0f, 1.0f};
+  for (int k = 0; k < 4; ++k)
+    if (chain.slot[k] >= 0) out[k] = vals[chain.slot[k]];
+  return out;
+}
+
+}  // namespace brdfcl::gltf
