@@ -354,7 +354,7 @@ TEST(GltfRaycast, LargeMeshAtFullHdCompletes) {
   expectValid(g);
   double hits = 0;
   for (float v : g.mask) hits += v;
-  EXPECT_GT(hits, 0.1 * g.pixelCount());  // a flat grid in a frame sized for its bounding sphere
+  EXPECT_GT(hits, 0.05 * g.pixelCount());  // a flat grid in a frame sized for its bounding sphere
   EXPECT_LT(hits, g.pixelCount());
 }
 
