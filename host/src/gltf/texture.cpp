@@ -77,6 +77,7 @@ MipChain buildChain(const Image& image, unsigned channels, ColorSpace space) {
             (space == ColorSpace::Srgb && c < 3) ? srgb[code] : static_cast<float>(code) / 65535.0f;
       }
   chain.levels.push_back({w, h, quantize(level)});
+  chain.log2Size = 0.5f * std::log2(static_cast<float>(w) * h);
   std::vector<float> tmp, next;
   while (w > 1 || h > 1) {
     int tw = w, th = h, nw = w, nh = h;
@@ -101,6 +102,7 @@ MipChain buildChain(const Image& image, unsigned channels, ColorSpace space) {
 }
 
 int wrapIndex(int i, int n, Wrap mode) {
+  if (i >= 0 && i < n) return i;
   switch (mode) {
     case Wrap::ClampToEdge:
       return std::clamp(i, 0, n - 1);
@@ -121,28 +123,48 @@ int wrapIndex(int i, int n, Wrap mode) {
 // them keeps the float -> int conversion defined.
 float boundCoord(float x) { return std::clamp(x, -1.0e8f, 1.0e8f); }
 
+// The index after wrapIndex(i) under the same mode, without a second division.
+int nextIndex(int wrapped, int i, int n, Wrap mode) {
+  if (mode == Wrap::Repeat) return wrapped + 1 == n ? 0 : wrapped + 1;
+  if (mode == Wrap::ClampToEdge) return std::min(std::max(i + 1, 0), n - 1);
+  return wrapIndex(i + 1, n, mode);
+}
+
+template <int Count>
+void blend(const std::uint16_t* t00, const std::uint16_t* t10, const std::uint16_t* t01, const std::uint16_t* t11,
+           float fx, float fy, float* out) {
+  for (int c = 0; c < Count; ++c) {
+    const float top = t00[c] + fx * (t10[c] - t00[c]), bottom = t01[c] + fx * (t11[c] - t01[c]);
+    out[c] = (top + fy * (bottom - top)) * (1.0f / 65535.0f);
+  }
+}
+
 void fetch(const MipChain& chain, int level, const Sampler& s, bool nearest, float u, float v, float out[4]) {
   const MipChain::Level& L = chain.levels[level];
   const int count = chain.count;
-  auto texel = [&](int i, int j) {
-    return &L.texels[(static_cast<std::size_t>(wrapIndex(j, L.height, s.wrapT)) * L.width +
-                      wrapIndex(i, L.width, s.wrapS)) * count];
-  };
-  float acc[4] = {0, 0, 0, 0};
+  const std::uint16_t* base = L.texels.data();
   if (nearest) {
-    const std::uint16_t* t = texel(static_cast<int>(std::floor(boundCoord(u * L.width))),
-                                   static_cast<int>(std::floor(boundCoord(v * L.height))));
-    for (int c = 0; c < count; ++c) acc[c] = t[c];
-  } else {
-    const float x = boundCoord(u * L.width - 0.5f), y = boundCoord(v * L.height - 0.5f);
-    const float x0 = std::floor(x), y0 = std::floor(y);
-    const float fx = x - x0, fy = y - y0;
-    const int i = static_cast<int>(x0), j = static_cast<int>(y0);
-    const std::uint16_t *t00 = texel(i, j), *t10 = texel(i + 1, j), *t01 = texel(i, j + 1), *t11 = texel(i + 1, j + 1);
-    for (int c = 0; c < count; ++c)
-      acc[c] = (1 - fy) * ((1 - fx) * t00[c] + fx * t10[c]) + fy * ((1 - fx) * t01[c] + fx * t11[c]);
+    const int i = wrapIndex(static_cast<int>(std::floor(boundCoord(u * L.width))), L.width, s.wrapS);
+    const int j = wrapIndex(static_cast<int>(std::floor(boundCoord(v * L.height))), L.height, s.wrapT);
+    const std::uint16_t* t = base + (static_cast<std::size_t>(j) * L.width + i) * count;
+    for (int c = 0; c < count; ++c) out[c] = t[c] * (1.0f / 65535.0f);
+    return;
   }
-  for (int c = 0; c < count; ++c) out[c] = acc[c] * (1.0f / 65535.0f);
+  const float x = boundCoord(u * L.width - 0.5f), y = boundCoord(v * L.height - 0.5f);
+  const float x0 = std::floor(x), y0 = std::floor(y);
+  const float fx = x - x0, fy = y - y0;
+  const int i = static_cast<int>(x0), j = static_cast<int>(y0);
+  const int i0 = wrapIndex(i, L.width, s.wrapS), i1 = nextIndex(i0, i, L.width, s.wrapS);
+  const int j0 = wrapIndex(j, L.height, s.wrapT), j1 = nextIndex(j0, j, L.height, s.wrapT);
+  const std::uint16_t* r0 = base + static_cast<std::size_t>(j0) * L.width * count;
+  const std::uint16_t* r1 = base + static_cast<std::size_t>(j1) * L.width * count;
+  const std::uint16_t *t00 = r0 + i0 * count, *t10 = r0 + i1 * count, *t01 = r1 + i0 * count, *t11 = r1 + i1 * count;
+  switch (count) {
+    case 1: return blend<1>(t00, t10, t01, t11, fx, fy, out);
+    case 2: return blend<2>(t00, t10, t01, t11, fx, fy, out);
+    case 3: return blend<3>(t00, t10, t01, t11, fx, fy, out);
+    default: return blend<4>(t00, t10, t01, t11, fx, fy, out);
+  }
 }
 
 }  // namespace
@@ -212,13 +234,14 @@ std::array<float, 4> Textures::sample(const TextureRef& ref, ColorSpace space, f
 
   const TextureTransform& tr = ref.transform;
   const float x = tr.scale[0] * u, y = tr.scale[1] * v;
-  const float c = std::cos(tr.rotation), sn = std::sin(tr.rotation);
-  const float ut = c * x + sn * y + tr.offset[0];
-  const float vt = -sn * x + c * y + tr.offset[1];
-
-  const MipChain::Level& base = chain.levels[0];
-  const float lod = coneLod + 0.5f * std::log2(static_cast<float>(base.width) * base.height) +
-                    0.5f * std::log2(std::fabs(tr.scale[0] * tr.scale[1]));
+  float ut = x + tr.offset[0], vt = y + tr.offset[1];
+  if (tr.rotation != 0.0f) {
+    const float c = std::cos(tr.rotation), sn = std::sin(tr.rotation);
+    ut = c * x + sn * y + tr.offset[0];
+    vt = -sn * x + c * y + tr.offset[1];
+  }
+  const float scaleArea = std::fabs(tr.scale[0] * tr.scale[1]);
+  const float lod = coneLod + chain.log2Size + (scaleArea != 1.0f ? 0.5f * std::log2(scaleArea) : 0.0f);
   float vals[4] = {0, 0, 0, 0};
   const int last = static_cast<int>(chain.levels.size()) - 1;
   if (!(lod > 0.0f)) {  // magnification (NaN included)

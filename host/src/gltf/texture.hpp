@@ -22,6 +22,7 @@ struct MipChain {
   int count = 0;                 // stored channels per texel
   std::array<int, 4> slot{-1, -1, -1, -1};  // RGBA channel -> index in a texel, -1 = not stored
   std::vector<Level> levels;
+  float log2Size = 0.0f;  // 0.5 log2(width height) of level 0: the texture's share of the LOD
   std::size_t bytes() const;
 };
 
