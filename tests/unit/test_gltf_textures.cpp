@@ -396,6 +396,40 @@ TEST(GltfTextures, DoubleSidedBackFacesTurnTheFrameToTheViewer) {
   }
 }
 
+TEST(GltfTextures, SixteenBitImagesKeepTheirPrecision) {
+  Material m;
+  m.baseColorTexture = ref();
+  m.metallicRoughnessTexture = ref();
+  Asset a = texturedQuad(m);
+  auto code = [](int x, int y, int c) { return (x * 4099 + y * 12345 + c * 777 + 1) % 65536; };
+  a.images[0].bits = 16;
+  for (int y = 0; y < kN; ++y)
+    for (int x = 0; x < kN; ++x)
+      for (int c = 0; c < 4; ++c) a.images[0].rgba[(std::size_t(y) * kN + x) * 4 + c] = std::uint16_t(code(x, y, c));
+  const GBuffer g = render(a);
+  for (int y = 0; y < kN; ++y)
+    for (int x = 0; x < kN; ++x) {
+      const std::size_t i = std::size_t(y) * kN + x;
+      for (int c = 0; c < 3; ++c) EXPECT_NEAR(g.baseColor[3 * i + c], srgbDecode(code(x, y, c) / 65535.0), 2e-5);
+      EXPECT_NEAR(g.roughness[i], code(x, y, 1) / 65535.0, 2e-5);
+    }
+}
+
+TEST(GltfTextures, OddSizedImageMipsDownToItsMean) {
+  Material m;
+  m.metallicRoughnessTexture = ref();
+  Asset a = texturedQuad(m);
+  a.images[0] = image(3, 5, texel);
+  a.samplers[0] = Sampler{};  // LINEAR_MIPMAP_LINEAR
+  // Tiled 100 times: the footprint covers the whole image, so the 1x1 level is read.
+  for (float& uv : a.primitives[0].uv0) uv *= 100.0f;
+  double mean = 0;
+  for (int y = 0; y < 5; ++y)
+    for (int x = 0; x < 3; ++x) mean += unit(x, y, 1) / 15.0;
+  const GBuffer g = render(a);
+  for (float r : g.roughness) EXPECT_NEAR(r, mean, 0.5 / 255.0 + 1e-6);
+}
+
 TEST(GltfTextures, NonexistentTextureIsAnError) {
   Material m;
   m.baseColorTexture.texture = 3;

@@ -52,31 +52,70 @@ void downsampleAxis(const std::vector<float>& src, int sw, int sh, int count, bo
   }
 }
 
-std::vector<std::uint16_t> quantize(const std::vector<float>& v) {
-  std::vector<std::uint16_t> q(v.size());
-  for (std::size_t i = 0; i < v.size(); ++i)
-    q[i] = static_cast<std::uint16_t>(std::lround(std::clamp(v[i], 0.0f, 1.0f) * 65535.0f));
-  return q;
+// 8-bit codes to linear values: linear channels and sRGB colour channels.
+const float* linear8() {
+  static const std::array<float, 256> t = [] {
+    std::array<float, 256> a{};
+    for (int i = 0; i < 256; ++i) a[i] = static_cast<float>(i) / 255.0f;
+    return a;
+  }();
+  return t.data();
+}
+const float* srgb8() {
+  static const std::array<float, 256> t = [] {
+    std::array<float, 256> a{};
+    for (int i = 0; i < 256; ++i) a[i] = srgbToLinear(static_cast<float>(i) / 255.0f);
+    return a;
+  }();
+  return t.data();
+}
+
+float linearToSrgb(float v) { return v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1.0f / 2.4f) - 0.055f; }
+
+// Stores one level of linear values in the chain's format.
+void store(const std::vector<float>& v, const MipChain& chain, bool srgbColour[4], MipChain::Level& L) {
+  if (!chain.eightBit) {
+    L.texels16.resize(v.size());
+    for (std::size_t i = 0; i < v.size(); ++i)
+      L.texels16[i] = static_cast<std::uint16_t>(std::lround(std::clamp(v[i], 0.0f, 1.0f) * 65535.0f));
+    return;
+  }
+  L.texels8.resize(v.size());
+  const std::size_t count = static_cast<std::size_t>(chain.count);
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    const float x = std::clamp(v[i], 0.0f, 1.0f);
+    L.texels8[i] = static_cast<std::uint8_t>(std::lround((srgbColour[i % count] ? linearToSrgb(x) : x) * 255.0f));
+  }
 }
 
 MipChain buildChain(const Image& image, unsigned channels, ColorSpace space) {
   MipChain chain;
   chain.channels = channels;
+  bool srgbColour[4] = {false, false, false, false};  // per stored channel
   for (int c = 0; c < 4; ++c)
-    if (channels & (1u << c)) chain.slot[c] = chain.count++;
+    if (channels & (1u << c)) {
+      srgbColour[chain.count] = space == ColorSpace::Srgb && c < 3;  // alpha is linear in sRGB textures too
+      chain.slot[c] = chain.count++;
+    }
   const int count = chain.count;
+  const std::size_t texels = static_cast<std::size_t>(image.width) * image.height;
+  chain.eightBit = std::all_of(image.rgba.begin(), image.rgba.end(), [](std::uint16_t v) { return v % 257 == 0; });
+  for (int k = 0; k < count; ++k) chain.decode8[k] = srgbColour[k] ? srgb8() : linear8();
   const std::vector<float>& srgb = srgbTable();
   int w = image.width, h = image.height;
-  std::vector<float> level(static_cast<std::size_t>(w) * h * count);
-  for (std::size_t t = 0; t < static_cast<std::size_t>(w) * h; ++t)
+  std::vector<float> level(texels * count);
+  MipChain::Level L0{w, h, {}, {}};
+  if (chain.eightBit) L0.texels8.resize(texels * count);
+  for (std::size_t t = 0; t < texels; ++t)
     for (int c = 0; c < 4; ++c)
       if (chain.slot[c] >= 0) {
+        const int k = chain.slot[c];
         const std::uint16_t code = image.rgba[t * 4 + c];
-        // Alpha is linear even in sRGB textures (glTF baseColorTexture).
-        level[t * count + chain.slot[c]] =
-            (space == ColorSpace::Srgb && c < 3) ? srgb[code] : static_cast<float>(code) / 65535.0f;
+        level[t * count + k] = srgbColour[k] ? srgb[code] : static_cast<float>(code) / 65535.0f;
+        if (chain.eightBit) L0.texels8[t * count + k] = static_cast<std::uint8_t>(code / 257);
       }
-  chain.levels.push_back({w, h, quantize(level)});
+  if (!chain.eightBit) store(level, chain, srgbColour, L0);
+  chain.levels.push_back(std::move(L0));
   chain.log2Size = 0.5f * std::log2(static_cast<float>(w) * h);
   std::vector<float> tmp, next;
   while (w > 1 || h > 1) {
@@ -96,7 +135,9 @@ MipChain buildChain(const Image& image, unsigned channels, ColorSpace space) {
     level.swap(next);
     w = nw;
     h = nh;
-    chain.levels.push_back({w, h, quantize(level)});
+    MipChain::Level L{w, h, {}, {}};
+    store(level, chain, srgbColour, L);
+    chain.levels.push_back(std::move(L));
   }
   return chain;
 }
@@ -130,24 +171,33 @@ int nextIndex(int wrapped, int i, int n, Wrap mode) {
   return wrapIndex(i + 1, n, mode);
 }
 
-template <int Count>
-void blend(const std::uint16_t* t00, const std::uint16_t* t10, const std::uint16_t* t01, const std::uint16_t* t11,
-           float fx, float fy, float* out) {
+// Texel decoders: 16-bit unorm, or an 8-bit code through its channel's table.
+struct Decode16 {
+  float operator()(int, std::uint16_t v) const { return v * (1.0f / 65535.0f); }
+};
+struct Decode8 {
+  const std::array<const float*, 4>& table;
+  float operator()(int c, std::uint8_t v) const { return table[c][v]; }
+};
+
+template <int Count, typename T, typename Decode>
+void blend(const T* t00, const T* t10, const T* t01, const T* t11, float fx, float fy, const Decode& d, float* out) {
   for (int c = 0; c < Count; ++c) {
-    const float top = t00[c] + fx * (t10[c] - t00[c]), bottom = t01[c] + fx * (t11[c] - t01[c]);
-    out[c] = (top + fy * (bottom - top)) * (1.0f / 65535.0f);
+    const float a = d(c, t00[c]), b = d(c, t10[c]), e = d(c, t01[c]), f = d(c, t11[c]);
+    const float top = a + fx * (b - a), bottom = e + fx * (f - e);
+    out[c] = top + fy * (bottom - top);
   }
 }
 
-void fetch(const MipChain& chain, int level, const Sampler& s, bool nearest, float u, float v, float out[4]) {
-  const MipChain::Level& L = chain.levels[level];
+template <typename T, typename Decode>
+void fetchFrom(const T* base, const MipChain& chain, const MipChain::Level& L, const Sampler& s, bool nearest, float u,
+               float v, const Decode& d, float out[4]) {
   const int count = chain.count;
-  const std::uint16_t* base = L.texels.data();
   if (nearest) {
     const int i = wrapIndex(static_cast<int>(std::floor(boundCoord(u * L.width))), L.width, s.wrapS);
     const int j = wrapIndex(static_cast<int>(std::floor(boundCoord(v * L.height))), L.height, s.wrapT);
-    const std::uint16_t* t = base + (static_cast<std::size_t>(j) * L.width + i) * count;
-    for (int c = 0; c < count; ++c) out[c] = t[c] * (1.0f / 65535.0f);
+    const T* t = base + (static_cast<std::size_t>(j) * L.width + i) * count;
+    for (int c = 0; c < count; ++c) out[c] = d(c, t[c]);
     return;
   }
   const float x = boundCoord(u * L.width - 0.5f), y = boundCoord(v * L.height - 0.5f);
@@ -156,15 +206,23 @@ void fetch(const MipChain& chain, int level, const Sampler& s, bool nearest, flo
   const int i = static_cast<int>(x0), j = static_cast<int>(y0);
   const int i0 = wrapIndex(i, L.width, s.wrapS), i1 = nextIndex(i0, i, L.width, s.wrapS);
   const int j0 = wrapIndex(j, L.height, s.wrapT), j1 = nextIndex(j0, j, L.height, s.wrapT);
-  const std::uint16_t* r0 = base + static_cast<std::size_t>(j0) * L.width * count;
-  const std::uint16_t* r1 = base + static_cast<std::size_t>(j1) * L.width * count;
-  const std::uint16_t *t00 = r0 + i0 * count, *t10 = r0 + i1 * count, *t01 = r1 + i0 * count, *t11 = r1 + i1 * count;
+  const T* r0 = base + static_cast<std::size_t>(j0) * L.width * count;
+  const T* r1 = base + static_cast<std::size_t>(j1) * L.width * count;
+  const T *t00 = r0 + i0 * count, *t10 = r0 + i1 * count, *t01 = r1 + i0 * count, *t11 = r1 + i1 * count;
   switch (count) {
-    case 1: return blend<1>(t00, t10, t01, t11, fx, fy, out);
-    case 2: return blend<2>(t00, t10, t01, t11, fx, fy, out);
-    case 3: return blend<3>(t00, t10, t01, t11, fx, fy, out);
-    default: return blend<4>(t00, t10, t01, t11, fx, fy, out);
+    case 1: return blend<1>(t00, t10, t01, t11, fx, fy, d, out);
+    case 2: return blend<2>(t00, t10, t01, t11, fx, fy, d, out);
+    case 3: return blend<3>(t00, t10, t01, t11, fx, fy, d, out);
+    default: return blend<4>(t00, t10, t01, t11, fx, fy, d, out);
   }
+}
+
+void fetch(const MipChain& chain, int level, const Sampler& s, bool nearest, float u, float v, float out[4]) {
+  const MipChain::Level& L = chain.levels[level];
+  if (chain.eightBit)
+    fetchFrom(L.texels8.data(), chain, L, s, nearest, u, v, Decode8{chain.decode8}, out);
+  else
+    fetchFrom(L.texels16.data(), chain, L, s, nearest, u, v, Decode16{}, out);
 }
 
 }  // namespace
@@ -175,7 +233,7 @@ float srgbToLinear(float c) {
 
 std::size_t MipChain::bytes() const {
   std::size_t b = 0;
-  for (const Level& L : levels) b += L.texels.size() * sizeof(std::uint16_t);
+  for (const Level& L : levels) b += L.texels16.size() * sizeof(std::uint16_t) + L.texels8.size();
   return b;
 }
 

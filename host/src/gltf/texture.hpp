@@ -10,17 +10,22 @@
 
 namespace brdfcl::gltf {
 
-// A mip chain of linear values stored as 16-bit unorm (8-bit sources are exact; sRGB-decoded
-// values are within 8e-6). Only the channels in `channels` (bit c = RGBA channel c) are stored,
-// packed in RGBA order.
+// A mip chain. Images whose every value is an 8-bit code keep 8 bits per channel: linear
+// channels as code / 255, sRGB colour channels sRGB-encoded and decoded per texel before
+// filtering (as GPUs do with sRGB formats); level 0 is then the file's codes, exactly. Other
+// images store linear values as 16-bit unorm. Only the channels in `channels` (bit c = RGBA
+// channel c) are stored, packed in RGBA order.
 struct MipChain {
   struct Level {
     int width = 0, height = 0;
-    std::vector<std::uint16_t> texels;  // `count` per texel, rows from the top
+    std::vector<std::uint16_t> texels16;  // `count` per texel, rows from the top (16-bit chains)
+    std::vector<std::uint8_t> texels8;    // likewise (8-bit chains)
   };
   unsigned channels = 0;
-  int count = 0;                 // stored channels per texel
+  int count = 0;                            // stored channels per texel
   std::array<int, 4> slot{-1, -1, -1, -1};  // RGBA channel -> index in a texel, -1 = not stored
+  bool eightBit = false;
+  std::array<const float*, 4> decode8{};  // per stored channel: code -> linear value (8-bit chains)
   std::vector<Level> levels;
   float log2Size = 0.0f;  // 0.5 log2(width height) of level 0: the texture's share of the LOD
   std::size_t bytes() const;
