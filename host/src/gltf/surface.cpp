@@ -139,9 +139,27 @@ SurfacePoint Surfaces::evaluate(const Hit& h) const {
   const float cosTheta = dot(t.Ng, dir);
   const float footprint = std::log2(h.coneWidth / std::max(std::fabs(cosTheta), 1e-4f));
   const Uv uvs[2] = {uvSet(p.uv0, t, vc, footprint), uvSet(p.uv1, t, vc, footprint)};
+  // Slots often share a texture (occlusion and metallic-roughness in one ORM image, clearcoat
+  // and its roughness): such a texture is sampled once per hit.
+  struct Sampled {
+    const TextureRef* ref;
+    ColorSpace space;
+    std::array<float, 4> value;
+  };
+  Sampled done[12];
+  int doneCount = 0;
   auto sample = [&](const TextureRef& ref, ColorSpace space) {
+    for (int k = 0; k < doneCount; ++k) {
+      const TextureRef& r = *done[k].ref;
+      if (r.texture == ref.texture && done[k].space == space && r.texCoord == ref.texCoord &&
+          r.transform.offset == ref.transform.offset && r.transform.rotation == ref.transform.rotation &&
+          r.transform.scale == ref.transform.scale)
+        return done[k].value;
+    }
     const Uv& uv = uvs[ref.texCoord == 1 ? 1 : 0];
-    return textures_.sample(ref, space, uv.u, uv.v, uv.coneLod);
+    const std::array<float, 4> value = textures_.sample(ref, space, uv.u, uv.v, uv.coneLod);
+    if (doneCount < 12) done[doneCount++] = {&ref, space, value};
+    return value;
   };
 
   V3 Ng = t.Ng, N = Ng;
