@@ -160,6 +160,11 @@ std::array<double, 3> mapped(int x, int y, double scale, std::array<double, 3> T
   return r;
 }
 
+bool onEdgeOf(double coord) {
+  const double f = coord * kN - std::floor(coord * kN);
+  return f < 1e-3 || f > 1 - 1e-3;
+}
+
 void expectVec(const std::vector<float>& v, std::size_t i, const std::array<double, 3>& e, const char* what) {
   for (int k = 0; k < 3; ++k) EXPECT_NEAR(v[3 * i + k], e[k], 2e-4) << what << " pixel " << i << " axis " << k;
 }
@@ -190,6 +195,26 @@ TEST(GltfTextures, NormalMapTiltsTheNormalInTheUvFrame) {
         expectVec(g.T, i, t, "T");
       }
   }
+}
+
+TEST(GltfTextures, GeneratedTangentsFollowTheNormalMapsTransform) {
+  // Rotating the UVs by 90 degrees (u' = v, v' = -u) turns the texture's +u' to the quad's -Y
+  // (+v) and its -v' (image up) to +X (+u).
+  Material m;
+  m.normalTexture = ref(0, 1.0f);
+  m.normalTexture.transform.rotation = float(M_PI / 2);
+  const GBuffer g = render(texturedQuad(m), 16);
+  int checked = 0;
+  for (int y = 0; y < 16; ++y)
+    for (int x = 0; x < 16; ++x) {
+      const double u = (x + 0.5) / 16, v = (y + 0.5) / 16;
+      const double ut = v, vt = -u;
+      if (onEdgeOf(ut) || onEdgeOf(vt)) continue;
+      const int tx = ((int(std::floor(ut * kN)) % kN) + kN) % kN, ty = ((int(std::floor(vt * kN)) % kN) + kN) % kN;
+      expectVec(g.N, std::size_t(y) * 16 + x, mapped(tx, ty, 1.0, {0, -1, 0}, {1, 0, 0}, {0, 0, 1}), "N");
+      ++checked;
+    }
+  EXPECT_GT(checked, 100);
 }
 
 TEST(GltfTextures, ClearcoatNormalMapHasItsOwnScaleAndLeavesNAlone) {

@@ -181,10 +181,18 @@ SurfacePoint Surfaces::evaluate(const Hit& h) const {
                             : m.clearcoatNormalTexture.present() ? m.clearcoatNormalTexture
                                                                  : m.anisotropyTexture;
     const Uv& uv = uvs[ref.texCoord == 1 ? 1 : 0];
-    const float det = uv.du1 * uv.dv2 - uv.du2 * uv.dv1;
+    // The map's texel axes are those of the transformed UVs (KHR_texture_transform's rotation
+    // and scale; the offset drops out of the differences).
+    const TextureTransform& tr = ref.transform;
+    const float c = std::cos(tr.rotation), sn = std::sin(tr.rotation);
+    const float du1 = c * tr.scale[0] * uv.du1 + sn * tr.scale[1] * uv.dv1;
+    const float dv1 = -sn * tr.scale[0] * uv.du1 + c * tr.scale[1] * uv.dv1;
+    const float du2 = c * tr.scale[0] * uv.du2 + sn * tr.scale[1] * uv.dv2;
+    const float dv2 = -sn * tr.scale[0] * uv.du2 + c * tr.scale[1] * uv.dv2;
+    const float det = du1 * dv2 - du2 * dv1;
     if (uv.present && std::fabs(det) > 0.0f) {
-      T = (1.0f / det) * (uv.dv2 * t.e1 - uv.dv1 * t.e2);
-      const V3 dPdv = (1.0f / det) * (uv.du1 * t.e2 - uv.du2 * t.e1);
+      T = (1.0f / det) * (dv2 * t.e1 - dv1 * t.e2);
+      const V3 dPdv = (1.0f / det) * (du1 * t.e2 - du2 * t.e1);
       w = dot(cross(N, T), -dPdv) < 0.0f ? -1.0f : 1.0f;
     }
   }
