@@ -159,6 +159,11 @@ TEST(GltfCamera, CameraArgumentSelectsByGltfIndex) {
   }
   EXPECT_THROW(chooseView(as, "front", 10, 10), Error);
   EXPECT_THROW(chooseView(as, "-1", 10, 10), Error);
+  as.cameras[0].ymag = 0.0;
+  EXPECT_THROW(chooseView(as, "2", 10, 10), Error);
+  as.cameras[1].orthographic = false;
+  as.cameras[1].yfov = 3.5;
+  EXPECT_THROW(chooseView(as, "5", 10, 10), Error);
   as.cameras.clear();
   EXPECT_EQ(chooseView(as, "", 10, 10).description, "auto");
   EXPECT_THROW(chooseView(as, "0", 10, 10), Error);

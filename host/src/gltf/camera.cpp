@@ -95,9 +95,14 @@ View chooseView(const Asset& asset, const std::string& cameraArg, int width, int
   v.position = {m[12], m[13], m[14]};
   v.orthographic = cam->orthographic;
   v.aspect = static_cast<double>(width) / height;
+  const std::string name = "cameras[" + std::to_string(cam->index) + "]";
   if (cam->orthographic) {
+    if (!(cam->ymag != 0.0) || !std::isfinite(cam->ymag))
+      throw Error(name + ": orthographic ymag " + std::to_string(cam->ymag) + " must be a non-zero number");
     v.halfHeight = std::fabs(cam->ymag);
   } else {
+    if (!(cam->yfov > 0.0 && cam->yfov < kPi))
+      throw Error(name + ": perspective yfov " + std::to_string(cam->yfov) + " must lie in (0, pi) radians");
     v.tanHalfFovY = std::tan(0.5 * cam->yfov);
   }
   v.znear = cam->znear;
