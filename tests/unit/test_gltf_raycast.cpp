@@ -368,7 +368,8 @@ TEST(GltfRaycast, LargeMeshAtFullHdCompletes) {
 // The SheenChair-class figures of docs/gltf.md: 7 textures of 2048^2. Run with
 // --gtest_also_run_disabled_tests; it takes several seconds to build the mip chains.
 TEST(GltfRaycast, DISABLED_BenchmarkSevenLargeTextures) {
-  const Asset as = largeMesh(std::getenv("BENCH_TEX") ? std::atoi(std::getenv("BENCH_TEX")) : 2048, 7);
+  const Asset as = largeMesh(std::getenv("BENCH_TEX") ? std::atoi(std::getenv("BENCH_TEX")) : 2048,
+                             std::getenv("BENCH_SLOTS") ? std::atoi(std::getenv("BENCH_SLOTS")) : 7);
   auto t0 = std::chrono::steady_clock::now();
   Raycaster rc(as);
   const double build = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

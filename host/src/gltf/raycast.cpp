@@ -128,8 +128,8 @@ GBuffer Raycaster::trace(const View& view, int width, int height, float jx, floa
   const auto& u = view.up;
   const float inf = std::numeric_limits<float>::infinity();
 
-  auto traceRow = [&](RayContext& rc, int y) {
-    for (int x = 0; x < width; ++x) {
+  auto tracePixel = [&](RayContext& rc, int x, int y) {
+    {
       const double s = 2.0 * (x + jx) / width - 1.0, t = 1.0 - 2.0 * (y + jy) / height;
       double o[3], d[3];
       for (int k = 0; k < 3; ++k) {
@@ -203,7 +203,11 @@ GBuffer Raycaster::trace(const View& view, int width, int height, float jx, floa
     }
   };
 
-  std::atomic<int> nextRow{0};
+  // Tiles rather than rows: neighbouring rows on one core reuse the texels the previous row
+  // brought into its cache.
+  constexpr int kTileW = 32, kTileH = 8;
+  const int tilesX = (width + kTileW - 1) / kTileW, tiles = tilesX * ((height + kTileH - 1) / kTileH);
+  std::atomic<int> nextTile{0};
   auto worker = [&] {
     RayContext rc;
     rtcInitIntersectContext(&rc.embree);
@@ -211,7 +215,11 @@ GBuffer Raycaster::trace(const View& view, int width, int height, float jx, floa
     rc.orthographic = view.orthographic;
     rc.coneSpread = static_cast<float>(2.0 * view.tanHalfFovY / height);
     rc.coneWidth = static_cast<float>(2.0 * view.halfHeight / height);
-    for (int y; (y = nextRow.fetch_add(1)) < height;) traceRow(rc, y);
+    for (int tile; (tile = nextTile.fetch_add(1)) < tiles;) {
+      const int x0 = (tile % tilesX) * kTileW, y0 = (tile / tilesX) * kTileH;
+      for (int y = y0; y < std::min(height, y0 + kTileH); ++y)
+        for (int x = x0; x < std::min(width, x0 + kTileW); ++x) tracePixel(rc, x, y);
+    }
   };
   const unsigned threads = std::max(2u, std::thread::hardware_concurrency());
   std::vector<std::thread> pool;
