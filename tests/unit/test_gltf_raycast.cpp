@@ -221,7 +221,7 @@ TEST(GltfCamera, AutoViewFramesTheBoundsFromThreeQuarters) {
 }
 
 // A checker of single texels tiled 30 times over a quad, seen from far away at 1 spp.
-Asset checkerAsset(bool mipmaps, double tilt) {
+Asset checkerAsset(bool mipmaps, double tilt, bool viaTransform = false, bool mipNearest = false) {
   Asset as;
   Material m;
   m.baseColorTexture.texture = 0;
@@ -229,10 +229,14 @@ Asset checkerAsset(bool mipmaps, double tilt) {
   as.images.push_back(image(8, 8, [](int x, int y, int c) { return c == 3 ? 255 : ((x + y) % 2 ? 255 : 0); }));
   Sampler s;  // LINEAR, LINEAR_MIPMAP_LINEAR
   s.mipmaps = mipmaps;
+  s.mipNearest = mipNearest;
   as.samplers.push_back(s);
   as.textures.push_back({0, 0});
   Primitive p = quad(-1, -1, 1, 1, 0, 0);
-  for (float& uv : p.uv0) uv *= 30.0f;
+  if (viaTransform)
+    as.materials[0].baseColorTexture.transform.scale = {30.0f, 30.0f};
+  else
+    for (float& uv : p.uv0) uv *= 30.0f;
   const Mat4 rot = rotationX(tilt);
   for (std::size_t v = 0; v < 4; ++v) {
     const D3 q = apply(rot, {p.positions[3 * v], p.positions[3 * v + 1], p.positions[3 * v + 2]});
@@ -269,6 +273,13 @@ TEST(GltfRaycast, RayConesAverageAFarTiledCheckerWithoutAliasing) {
     const GBuffer g = rc.trace(chooseView(as, "", 64, 64), 64, 64);
     expectValid(g);
     EXPECT_LT(maxDeviationFromGrey(g), 0.02) << "tilt " << tilt;
+  }
+  // Tiled by KHR_texture_transform's scale instead of the UVs; and with MIPMAP_NEAREST.
+  for (auto [viaTransform, mipNearest] : {std::pair{true, false}, std::pair{false, true}}) {
+    const Asset as = checkerAsset(true, -0.5, viaTransform, mipNearest);
+    Raycaster rc(as);
+    const GBuffer g = rc.trace(chooseView(as, "", 64, 64), 64, 64);
+    EXPECT_LT(maxDeviationFromGrey(g), 0.02) << "transform " << viaTransform << " mipNearest " << mipNearest;
   }
   // Control: without mip-maps the same view aliases, so the check above can fail.
   const Asset as = checkerAsset(false, 0.0);
