@@ -3,6 +3,7 @@
 // and ray-cone footprints. Implemented in host/src/gltf/{camera,raycast,texture,surface}.cpp.
 #pragma once
 #include <array>
+#include <cstddef>
 #include <memory>
 #include <string>
 
@@ -47,6 +48,9 @@ class Raycaster {
   // pixel centre. The G-buffer holds every channel of docs/gbuffer.md, V included; mask 0 where
   // the ray leaves the scene.
   GBuffer trace(const View& view, int width, int height, float jx = 0.5f, float jy = 0.5f) const;
+
+  // Memory held by the textures' mip chains (16-bit channels, only those some slot reads).
+  std::size_t textureBytes() const;
 
  private:
   struct State;

@@ -1,0 +1,124 @@
+// Primary-ray views of a glTF asset: its camera nodes (perspective or orthographic) or the
+// automatic three-quarter view that frames the world bounding box, and the default image size.
+// The automatic view is specified in docs/gltf.md, Rendering.
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "brdfcl/error.hpp"
+#include "brdfcl/gltf_render.hpp"
+
+namespace brdfcl::gltf {
+namespace {
+
+using Vec3 = std::array<double, 3>;
+
+Vec3 normalized(const Vec3& v) {
+  const double len = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+  return len > 0.0 ? Vec3{v[0] / len, v[1] / len, v[2] / len} : v;
+}
+double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+Vec3 cross(const Vec3& a, const Vec3& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kAutoYFov = 40.0 * kPi / 180.0;
+constexpr double kAutoMargin = 1.1;  // the bounding sphere fills 1/1.1 of the tighter image axis
+
+// nullptr for "auto" (or "" without cameras); throws for anything else that names no camera.
+const Camera* findCamera(const Asset& asset, const std::string& arg) {
+  if (arg.empty()) return asset.cameras.empty() ? nullptr : &asset.cameras[0];
+  if (arg == "auto") return nullptr;
+  const bool digits = arg.size() <= 9 && std::all_of(arg.begin(), arg.end(), [](char c) { return c >= '0' && c <= '9'; });
+  if (!digits)
+    throw Error("camera '" + arg + "': expected auto or a glTF camera index (a number such as 0)");
+  const int index = std::stoi(arg);
+  for (const Camera& c : asset.cameras)
+    if (c.index == index) return &c;
+  std::vector<int> used;
+  for (const Camera& c : asset.cameras) used.push_back(c.index);
+  std::sort(used.begin(), used.end());
+  used.erase(std::unique(used.begin(), used.end()), used.end());
+  std::string available;
+  for (int i : used) available += (available.empty() ? " " : ", ") + std::to_string(i);
+  throw Error("camera " + arg + ": no node of the scene uses cameras[" + arg + "]" +
+              (available.empty() ? std::string("; the scene has no camera nodes, use auto")
+                                 : "; cameras used by the scene:" + available));
+}
+
+View autoView(const Asset& asset, int width, int height) {
+  View v;
+  v.description = "auto";
+  const Vec3 centre{0.5 * (asset.boundsMin[0] + asset.boundsMax[0]), 0.5 * (asset.boundsMin[1] + asset.boundsMax[1]),
+                    0.5 * (asset.boundsMin[2] + asset.boundsMax[2])};
+  const Vec3 half{0.5 * (asset.boundsMax[0] - asset.boundsMin[0]), 0.5 * (asset.boundsMax[1] - asset.boundsMin[1]),
+                  0.5 * (asset.boundsMax[2] - asset.boundsMin[2])};
+  double radius = std::sqrt(dot(half, half));
+  if (!(radius > 0.0) || !std::isfinite(radius)) radius = 1.0;
+  v.aspect = static_cast<double>(width) / height;
+  v.tanHalfFovY = std::tan(0.5 * kAutoYFov);
+  // The sphere fits when its angular radius asin(r / d) is within the tighter half-angle.
+  const double halfX = std::atan(v.tanHalfFovY * v.aspect);
+  const double halfAngle = std::min(0.5 * kAutoYFov, halfX);
+  const double distance = kAutoMargin * radius / std::sin(halfAngle);
+  const Vec3 toEye = normalized({1.0, 0.6, 1.0});
+  v.position = {centre[0] + distance * toEye[0], centre[1] + distance * toEye[1], centre[2] + distance * toEye[2]};
+  v.forward = {-toEye[0], -toEye[1], -toEye[2]};
+  v.right = normalized(cross(v.forward, {0.0, 1.0, 0.0}));
+  v.up = cross(v.right, v.forward);
+  v.znear = 1e-3 * radius;
+  v.zfar = 0.0;
+  return v;
+}
+
+}  // namespace
+
+View chooseView(const Asset& asset, const std::string& cameraArg, int width, int height) {
+  if (width <= 0 || height <= 0)
+    throw Error("image size " + std::to_string(width) + "x" + std::to_string(height) + ": expected positive sizes");
+  const Camera* cam = findCamera(asset, cameraArg);
+  if (!cam) return autoView(asset, width, height);
+
+  View v;
+  const Mat4& m = cam->world;
+  // The columns carry the node's scale, which a camera frame ignores; shear is removed too.
+  const Vec3 x = normalized({m[0], m[1], m[2]});
+  const Vec3 z = normalized({m[8], m[9], m[10]});
+  v.forward = {-z[0], -z[1], -z[2]};
+  v.right = normalized({x[0] - dot(x, z) * z[0], x[1] - dot(x, z) * z[1], x[2] - dot(x, z) * z[2]});
+  v.up = cross(z, v.right);
+  if (!(dot(v.right, v.right) > 0.5) || !(dot(z, z) > 0.5))
+    throw Error("cameras[" + std::to_string(cam->index) + "] (node " + std::to_string(cam->node) +
+                "): the world matrix has a degenerate rotation; the camera has no view direction");
+  v.position = {m[12], m[13], m[14]};
+  v.orthographic = cam->orthographic;
+  v.aspect = static_cast<double>(width) / height;
+  const std::string name = "cameras[" + std::to_string(cam->index) + "]";
+  if (cam->orthographic) {
+    if (!(cam->ymag != 0.0) || !std::isfinite(cam->ymag))
+      throw Error(name + ": orthographic ymag " + std::to_string(cam->ymag) + " must be a non-zero number");
+    v.halfHeight = std::fabs(cam->ymag);
+  } else {
+    if (!(cam->yfov > 0.0 && cam->yfov < kPi))
+      throw Error(name + ": perspective yfov " + std::to_string(cam->yfov) + " must lie in (0, pi) radians");
+    v.tanHalfFovY = std::tan(0.5 * cam->yfov);
+  }
+  v.znear = cam->znear;
+  v.zfar = cam->zfar;
+  v.description = "cameras[" + std::to_string(cam->index) + "]" + (cam->name.empty() ? "" : " '" + cam->name + "'") +
+                  " (node " + std::to_string(cam->node) + ")";
+  return v;
+}
+
+void defaultSize(const Asset& asset, const std::string& cameraArg, int& width, int& height) {
+  const Camera* cam = findCamera(asset, cameraArg);
+  width = 1280;
+  height = 720;
+  double aspect = 0.0;
+  if (cam) aspect = cam->orthographic ? (cam->ymag != 0.0 ? std::fabs(cam->xmag / cam->ymag) : 0.0) : cam->aspectRatio;
+  if (aspect > 0.0 && std::isfinite(aspect)) width = std::max(1, static_cast<int>(std::lround(720.0 * aspect)));
+}
+
+}  // namespace brdfcl::gltf

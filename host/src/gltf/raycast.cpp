@@ -1,0 +1,232 @@
+// Primary rays through a glTF asset with Embree 3: one triangle geometry per primitive, an
+// intersection filter for back-face culling and alpha cut-outs, rows of pixels traced on
+// several threads, hits decoded into the G-buffer by Surfaces.
+#include <embree3/rtcore.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <limits>
+#include <thread>
+
+#include "brdfcl/error.hpp"
+#include "brdfcl/gltf_render.hpp"
+#include "gltf/surface.hpp"
+#include "gltf/texture.hpp"
+
+namespace brdfcl::gltf {
+namespace {
+
+// Embree hands the filter the context it was given, so the cone travels with each ray.
+struct RayContext {
+  RTCIntersectContext embree;
+  const Surfaces* surfaces = nullptr;
+  bool orthographic = false;
+  float coneSpread = 0.0f;  // perspective: width per unit distance along the ray
+  float coneWidth = 0.0f;   // orthographic: constant width
+};
+
+void filterHit(const RTCFilterFunctionNArguments* args) {
+  const RayContext* rc = reinterpret_cast<const RayContext*>(args->context);
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (args->valid[i] != -1) continue;
+    Hit h;
+    h.prim = static_cast<int>(RTCHitN_geomID(args->hit, args->N, i));
+    h.tri = RTCHitN_primID(args->hit, args->N, i);
+    h.u = RTCHitN_u(args->hit, args->N, i);
+    h.v = RTCHitN_v(args->hit, args->N, i);
+    h.dir = {RTCRayN_dir_x(args->ray, args->N, i), RTCRayN_dir_y(args->ray, args->N, i),
+             RTCRayN_dir_z(args->ray, args->N, i)};
+    const float t = RTCRayN_tfar(args->ray, args->N, i);
+    h.coneWidth = rc->orthographic ? rc->coneWidth : t * rc->coneSpread;
+    if (!rc->surfaces->accepts(h)) args->valid[i] = 0;
+  }
+}
+
+}  // namespace
+
+struct Raycaster::State {
+  RTCDevice device = nullptr;
+  RTCScene scene = nullptr;
+  Asset geometry;  // primitives and materials only: the images live on as mip chains
+  std::unique_ptr<Textures> textures;
+  std::unique_ptr<Surfaces> surfaces;
+  ~State() {
+    if (scene) rtcReleaseScene(scene);
+    if (device) rtcReleaseDevice(device);
+  }
+};
+
+Raycaster::Raycaster(const Asset& asset) : s_(std::make_unique<State>()) {
+  State& st = *s_;
+  st.textures = std::make_unique<Textures>(asset);
+  st.geometry.path = asset.path;
+  st.geometry.primitives = asset.primitives;
+  st.geometry.materials = asset.materials;
+  st.surfaces = std::make_unique<Surfaces>(st.geometry, *st.textures);
+
+  st.device = rtcNewDevice(nullptr);
+  if (!st.device) throw Error("Embree: cannot create a device (" + std::to_string(rtcGetDeviceError(nullptr)) + ")");
+  st.scene = rtcNewScene(st.device);
+  // Rays through a shared edge (a quad's diagonal at a pixel centre) must not slip between triangles.
+  rtcSetSceneFlags(st.scene, RTC_SCENE_FLAG_ROBUST);
+  for (std::size_t i = 0; i < st.geometry.primitives.size(); ++i) {
+    const Primitive& p = st.geometry.primitives[i];
+    const std::size_t vc = p.vertexCount(), tc = p.triangleCount();
+    if (tc == 0 || vc == 0) continue;
+    for (std::uint32_t index : p.indices)
+      if (index >= vc)
+        throw Error(p.where + ": vertex index " + std::to_string(index) + " out of range (" + std::to_string(vc) +
+                    " vertices)");
+    const int m = p.material;
+    if (m >= static_cast<int>(st.geometry.materials.size()))
+      throw Error(p.where + ": material " + std::to_string(m) + " does not exist (the asset has " +
+                  std::to_string(st.geometry.materials.size()) + ")");
+    RTCGeometry g = rtcNewGeometry(st.device, RTC_GEOMETRY_TYPE_TRIANGLE);
+    auto* vb = static_cast<float*>(
+        rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), vc));
+    auto* ib = static_cast<std::uint32_t*>(
+        rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(std::uint32_t), tc));
+    if (!vb || !ib) {
+      rtcReleaseGeometry(g);
+      throw Error("Embree: out of memory for " + p.where);
+    }
+    std::copy(p.positions.begin(), p.positions.begin() + 3 * vc, vb);
+    std::copy(p.indices.begin(), p.indices.begin() + 3 * tc, ib);
+    if (st.surfaces->mayReject(static_cast<int>(i))) rtcSetGeometryIntersectFilterFunction(g, filterHit);
+    rtcCommitGeometry(g);
+    rtcAttachGeometryByID(st.scene, g, static_cast<unsigned>(i));
+    rtcReleaseGeometry(g);
+  }
+  rtcCommitScene(st.scene);
+  const RTCError err = rtcGetDeviceError(st.device);
+  if (err != RTC_ERROR_NONE) throw Error("Embree: cannot build the scene (error " + std::to_string(err) + ")");
+}
+
+Raycaster::~Raycaster() = default;
+
+std::size_t Raycaster::textureBytes() const { return s_->textures->bytes(); }
+
+GBuffer Raycaster::trace(const View& view, int width, int height, float jx, float jy) const {
+  if (width <= 0 || height <= 0)
+    throw Error("image size " + std::to_string(width) + "x" + std::to_string(height) + ": expected positive sizes");
+  GBuffer g;
+  g.width = width;
+  g.height = height;
+  const std::size_t n = g.pixelCount();
+  for (std::vector<float>* v : {&g.P, &g.N, &g.T, &g.baseColor, &g.emissive, &g.sheenColor, &g.clearcoatN, &g.V})
+    v->assign(3 * n, 0.0f);
+  for (std::vector<float>* v : {&g.metallic, &g.roughness, &g.mask, &g.sheenRoughness, &g.clearcoat,
+                                &g.clearcoatRoughness, &g.anisotropyStrength, &g.anisotropyRotation, &g.occlusion})
+    v->assign(n, 0.0f);
+
+  const State& st = *s_;
+  const double aspect = view.aspect;
+  const double ext = view.orthographic ? view.halfHeight : view.tanHalfFovY;
+  const auto& f = view.forward;
+  const auto& r = view.right;
+  const auto& u = view.up;
+  const float inf = std::numeric_limits<float>::infinity();
+
+  auto tracePixel = [&](RayContext& rc, int x, int y) {
+    {
+      const double s = 2.0 * (x + jx) / width - 1.0, t = 1.0 - 2.0 * (y + jy) / height;
+      double o[3], d[3];
+      for (int k = 0; k < 3; ++k) {
+        if (view.orthographic) {
+          o[k] = view.position[k] + s * ext * aspect * r[k] + t * ext * u[k];
+          d[k] = f[k];
+        } else {
+          o[k] = view.position[k];
+          d[k] = f[k] + s * ext * aspect * r[k] + t * ext * u[k];
+        }
+      }
+      const double len = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+      for (double& c : d) c /= len;
+      // Distances along the ray to the near and far planes, which are perpendicular to forward.
+      const double cosF = d[0] * f[0] + d[1] * f[1] + d[2] * f[2];
+      RTCRayHit rh;
+      rh.ray.org_x = static_cast<float>(o[0]);
+      rh.ray.org_y = static_cast<float>(o[1]);
+      rh.ray.org_z = static_cast<float>(o[2]);
+      rh.ray.dir_x = static_cast<float>(d[0]);
+      rh.ray.dir_y = static_cast<float>(d[1]);
+      rh.ray.dir_z = static_cast<float>(d[2]);
+      rh.ray.tnear = static_cast<float>(std::max(0.0, view.znear / cosF));
+      rh.ray.tfar = view.zfar > 0.0 ? static_cast<float>(view.zfar / cosF) : inf;
+      rh.ray.time = 0.0f;
+      rh.ray.mask = 0xFFFFFFFFu;
+      rh.ray.id = 0;
+      rh.ray.flags = 0;
+      rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+      rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
+      rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+      rtcIntersect1(st.scene, &rc.embree, &rh);
+
+      const std::size_t i = static_cast<std::size_t>(y) * width + x;
+      float V[3] = {static_cast<float>(-d[0]), static_cast<float>(-d[1]), static_cast<float>(-d[2])};
+      if (rh.hit.geomID != RTC_INVALID_GEOMETRY_ID) {
+        Hit h;
+        h.prim = static_cast<int>(rh.hit.geomID);
+        h.tri = rh.hit.primID;
+        h.u = rh.hit.u;
+        h.v = rh.hit.v;
+        h.dir = {rh.ray.dir_x, rh.ray.dir_y, rh.ray.dir_z};
+        h.coneWidth = rc.orthographic ? rc.coneWidth : rh.ray.tfar * rc.coneSpread;
+        const SurfacePoint sp = st.surfaces->evaluate(h);
+        if (!view.orthographic) {
+          const double e[3] = {view.position[0] - sp.P[0], view.position[1] - sp.P[1], view.position[2] - sp.P[2]};
+          const double el = std::sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]);
+          if (el > 0.0 && std::isfinite(el))
+            for (int k = 0; k < 3; ++k) V[k] = static_cast<float>(e[k] / el);
+        }
+        for (int k = 0; k < 3; ++k) {
+          g.P[3 * i + k] = sp.P[k];
+          g.N[3 * i + k] = sp.N[k];
+          g.T[3 * i + k] = sp.T[k];
+          g.baseColor[3 * i + k] = sp.baseColor[k];
+          g.emissive[3 * i + k] = sp.emissive[k];
+          g.sheenColor[3 * i + k] = sp.sheenColor[k];
+          g.clearcoatN[3 * i + k] = sp.clearcoatN[k];
+        }
+        g.mask[i] = 1.0f;
+        g.metallic[i] = sp.metallic;
+        g.roughness[i] = sp.roughness;
+        g.sheenRoughness[i] = sp.sheenRoughness;
+        g.clearcoat[i] = sp.clearcoat;
+        g.clearcoatRoughness[i] = sp.clearcoatRoughness;
+        g.anisotropyStrength[i] = sp.anisotropyStrength;
+        g.anisotropyRotation[i] = sp.anisotropyRotation;
+        g.occlusion[i] = sp.occlusion;
+      }
+      for (int k = 0; k < 3; ++k) g.V[3 * i + k] = V[k];
+    }
+  };
+
+  // Tiles rather than rows: neighbouring rows on one core reuse the texels the previous row
+  // brought into its cache.
+  constexpr int kTileW = 32, kTileH = 8;
+  const int tilesX = (width + kTileW - 1) / kTileW, tiles = tilesX * ((height + kTileH - 1) / kTileH);
+  std::atomic<int> nextTile{0};
+  auto worker = [&] {
+    RayContext rc;
+    rtcInitIntersectContext(&rc.embree);
+    rc.surfaces = st.surfaces.get();
+    rc.orthographic = view.orthographic;
+    rc.coneSpread = static_cast<float>(2.0 * view.tanHalfFovY / height);
+    rc.coneWidth = static_cast<float>(2.0 * view.halfHeight / height);
+    for (int tile; (tile = nextTile.fetch_add(1)) < tiles;) {
+      const int x0 = (tile % tilesX) * kTileW, y0 = (tile / tilesX) * kTileH;
+      for (int y = y0; y < std::min(height, y0 + kTileH); ++y)
+        for (int x = x0; x < std::min(width, x0 + kTileW); ++x) tracePixel(rc, x, y);
+    }
+  };
+  const unsigned threads = std::max(2u, std::thread::hardware_concurrency());
+  std::vector<std::thread> pool;
+  for (unsigned k = 1; k < threads; ++k) pool.emplace_back(worker);
+  worker();
+  for (std::thread& th : pool) th.join();
+  return g;
+}
+
+}  // namespace brdfcl::gltf
