@@ -367,6 +367,50 @@ TEST(EnvironmentHdr, RunLengthEncodedScanLines) {
                                   "corrupt: write it again");
 }
 
+// A small fuzz run in the unit tests: byte flips and cuts of a run-length encoded file must give
+// an image of the header's size or a one-line brdfcl::Error, never a hang, crash or other exception.
+TEST(EnvironmentHdr, MutatedFilesAreReadOrRefusedCleanly) {
+  ScratchDir dir("environment-hdr");
+  const int w = 12, h = 3;
+  std::string good = radianceHeader(w, h);
+  const std::size_t header = good.size();
+  for (int y = 0; y < h; ++y) {
+    good += std::string{2, 2, 0, char(w)};
+    for (int c = 0; c < 4; ++c) good += std::string{char(128 + 5), char(90 + c), char(7), 1, 2, 3, 4, 5, 6, char(130)};
+  }
+  std::mt19937 rng(seed() & 0xffffffffu);
+  int read = 0, refused = 0;
+  for (int trial = 0; trial < 1000; ++trial) {
+    std::string bytes = good;
+    const int kind = trial % 3;
+    if (kind == 0) {
+      bytes.resize(rng() % bytes.size());
+    } else {
+      // Mostly the pixel data; sometimes the header.
+      for (int k = 0, flips = 1 + int(rng() % 4); k < flips; ++k) {
+        const std::size_t at = rng() % 8 == 0 ? rng() % header : header + rng() % (bytes.size() - header);
+        bytes[at] = char(kind == 1 ? rng() % 256 : bytes[at] ^ (1 << (rng() % 8)));
+      }
+    }
+    writeBytes(dir.path("m.hdr"), bytes);
+    int ww = 0, hh = 0;
+    try {
+      const auto rgb = readEnvironmentRgb(dir.path("m.hdr"), ww, hh);
+      ASSERT_EQ(rgb.size(), 3u * ww * hh) << "trial " << trial;
+      ++read;
+    } catch (const Error& e) {
+      const std::string m = e.what();
+      ASSERT_EQ(m.find('\n'), std::string::npos) << m;
+      ASSERT_NE(m.find(dir.path("m.hdr")), std::string::npos) << m;
+      ++refused;
+    } catch (const std::exception& e) {
+      FAIL() << "trial " << trial << ": " << e.what();
+    }
+  }
+  EXPECT_GT(read, 30) << refused << " refused";
+  EXPECT_GT(refused, 300) << read << " read";
+}
+
 TEST(EnvironmentHdr, RejectionsAreOneLineAndNameTheFile) {
   ScratchDir dir("environment-hdr");
   int w = 0, h = 0;
