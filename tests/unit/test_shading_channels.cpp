@@ -443,6 +443,14 @@ TEST(EnvironmentHdr, RejectionsAreOneLineAndNameTheFile) {
             "cannot read '" + dir.path("missing.hdr") + "': No such file or directory");
   EXPECT_EQ(errorOf([&] { readRadianceHdr(dir.path("env.png"), w, h); }),
             dir.path("env.png") + ": not a Radiance HDR file (it does not start with #?RADIANCE or #?RGBE)");
+  // A sparse file: the size is refused before anything is read.
+  {
+    std::ofstream(dir.path("big.hdr"), std::ios::binary) << radianceHeader(3, 2);
+    std::filesystem::resize_file(dir.path("big.hdr"), (std::uintmax_t(1) << 31) + 16);
+  }
+  EXPECT_EQ(errorOf([&] { readEnvironmentRgb(dir.path("big.hdr"), w, h); }),
+            dir.path("big.hdr") + ": cannot decode Radiance HDR (the file is larger than 2 GiB, stb_image's limit); use "
+                                  "OpenEXR");
   // An EXR is recognised by its magic number whatever its name.
   const std::vector<float> grey(3 * 8 * 4, 0.5f);
   writeExrRgb(dir.path("really-exr.hdr"), 8, 4, grey);

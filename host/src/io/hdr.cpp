@@ -1,6 +1,8 @@
 // Environment images in either format brdfcl accepts: OpenEXR (readExrRgb) or Radiance RGBE
 // (.hdr, decoded by stb_image after the checks below), told apart by their first bytes.
 // Every failure is one line naming the file.
+#include <sys/stat.h>
+
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -117,6 +119,10 @@ void checkPixelData(const std::string& bytes, std::size_t at, long long width, l
 
 std::vector<float> readRadianceHdr(const std::string& path, int& width, int& height) {
   const std::string shown = printable(path);
+  // stb_image takes the size as an int; checked before the file is read into memory.
+  if (struct stat st {}; ::stat(path.c_str(), &st) == 0 && S_ISREG(st.st_mode) &&
+                         st.st_size > std::numeric_limits<int>::max())
+    throw Error(shown + ": cannot decode Radiance HDR (the file is larger than 2 GiB, stb_image's limit); use OpenEXR");
   std::string bytes;
   if (const int err = detail::readWholeFile(path, bytes))
     throw Error("cannot read '" + shown + "': " + std::strerror(err));
@@ -126,7 +132,7 @@ std::vector<float> readRadianceHdr(const std::string& path, int& width, int& hei
   const std::size_t data = parseHeader(bytes, shown, w, h);
   checkPixelData(bytes, data, w, h, shown);
   if (bytes.size() > static_cast<std::size_t>(std::numeric_limits<int>::max()))
-    throw Error(shown + ": cannot decode Radiance HDR (file larger than 2 GiB)");
+    throw Error(shown + ": cannot decode Radiance HDR (the file is larger than 2 GiB, stb_image's limit); use OpenEXR");
   int sw = 0, sh = 0, comp = 0;
   // stbi_loadf converts LDR files with stbi_ldr_to_hdr_gamma, but only Radiance data reaches it
   // here, which it returns as decoded (m * 2^(e - 136)), with no gamma or scale.
@@ -140,8 +146,9 @@ std::vector<float> readRadianceHdr(const std::string& path, int& width, int& hei
                 "); the file is truncated or corrupt: write it again");
   }
   if (sw != w || sh != h)
-    throw Error(shown + ": cannot decode Radiance HDR (decoded " + std::to_string(sw) + "x" + std::to_string(sh) +
-                ", header says " + std::to_string(w) + "x" + std::to_string(h) + ")");
+    throw Error("internal: " + shown + ": stb_image decoded " + std::to_string(sw) + "x" + std::to_string(sh) +
+                    " where brdfcl read the header as " + std::to_string(w) + "x" + std::to_string(h),
+                3);
   const std::size_t n = 3 * static_cast<std::size_t>(w) * static_cast<std::size_t>(h);
   std::vector<float> rgb(pixels.get(), pixels.get() + n);
   width = sw;
