@@ -1,7 +1,8 @@
 /* Deferred shading of a G-buffer: per pixel, decode the material once (common/material_pack.h),
    add every punctual light through the batch evaluator's own layers (brdf_sheened, then
-   layer_clearcoat on the clearcoat normal), then split-sum image-based light and the clearcoat-
-   darkened emission. Masked-out pixels show the environment. */
+   layer_clearcoat on the clearcoat normal), then split-sum image-based light (times the glTF
+   occlusion) and the clearcoat-darkened emission. Masked-out pixels show the environment. The view
+   is the G-buffer's V where it has one, else the camera's. */
 #define BRDFCL_W 1
 #include "brdf/material.h"
 #include "common/material_pack.h"
