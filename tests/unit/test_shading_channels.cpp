@@ -200,6 +200,42 @@ TEST(ShadingChannels, ExplicitViewEqualsTheCameraView) {
   EXPECT_GT(changed, 100);
 }
 
+// What V is for: an orthographic view of a plane under a directional light and an environment
+// shades every pixel alike, which no pinhole camera gives.
+TEST(ShadingChannels, OrthographicViewShadesAPlaneUniformly) {
+  Scene scene = sceneLookingFrom({0.0f, 0.0f, 3.0f}, "sky", 1.0f);
+  Light sun;
+  sun.type = Light::Type::Directional;
+  sun.direction = {-0.2f, -0.3f, -0.93f};
+  scene.lights = {sun};
+  GBuffer g = layeredPixel();
+  g.width = g.height = 4;
+  const std::size_t n = g.pixelCount();
+  auto spread = [&](std::vector<float>& v) {
+    const std::vector<float> one = v;
+    v.clear();
+    for (std::size_t i = 0; i < n; ++i) v.insert(v.end(), one.begin(), one.end());
+  };
+  for (auto* v : {&g.N, &g.T, &g.baseColor, &g.metallic, &g.roughness, &g.mask, &g.sheenColor, &g.sheenRoughness,
+                  &g.clearcoat, &g.clearcoatRoughness})
+    spread(*v);
+  g.P.clear();
+  for (int y = 0; y < 4; ++y)
+    for (int x = 0; x < 4; ++x) g.P.insert(g.P.end(), {0.5f * (x - 1.5f), 0.5f * (1.5f - y), 0.0f});
+  Shader shader(runtime(), scene);
+  const Image pinhole = shader.shade(g);
+  g.V.clear();
+  for (std::size_t i = 0; i < n; ++i) g.V.insert(g.V.end(), {0.28f, 0.0f, 0.96f});
+  const Image ortho = shader.shade(g);
+  float pinholeSpread = 0;
+  for (std::size_t i = 1; i < n; ++i)
+    for (int c = 0; c < 3; ++c) {
+      EXPECT_EQ(ortho.rgb[3 * i + c], ortho.rgb[c]) << "pixel " << i << " channel " << c;
+      pinholeSpread = std::max(pinholeSpread, std::fabs(pinhole.rgb[3 * i + c] - pinhole.rgb[c]));
+    }
+  EXPECT_GT(pinholeSpread, 1e-3f);
+}
+
 // Background pixels show the environment in direction -V: texel centres of a small .hdr whose
 // texels are all different, read through the scene JSON.
 TEST(ShadingChannels, BackgroundLooksUpMinusV) {
