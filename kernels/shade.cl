@@ -1,7 +1,8 @@
 /* Deferred shading of a G-buffer: per pixel, decode the material once (common/material_pack.h),
    add every punctual light through the batch evaluator's own layers (brdf_sheened, then
-   layer_clearcoat on the clearcoat normal), then split-sum image-based light and the clearcoat-
-   darkened emission. Masked-out pixels show the environment. */
+   layer_clearcoat on the clearcoat normal), then split-sum image-based light (times the glTF
+   occlusion) and the clearcoat-darkened emission. Masked-out pixels show the environment. The view
+   is the G-buffer's V where it has one, else the camera's. */
 #define BRDFCL_W 1
 #include "brdf/material.h"
 #include "common/material_pack.h"
@@ -51,8 +52,14 @@ __kernel void shade(__global const float* restrict gb, int width, int height, br
   const int np = width * height, i = y * width + x;
 #define GB(k) gb[(k) * np + i]
   const float3 eye = (float3)(cam.position[0], cam.position[1], cam.position[2]);
+  /* The G-buffer's own view direction, when it has one, replaces the camera's (orthographic
+     and other cameras a pinhole cannot express; docs/gbuffer.md). */
+  const float3 Vg = (float3)(GB(GB_VX), GB(GB_VY), GB(GB_VZ));
+  const bool has_v = dot(Vg, Vg) > 0.0f;
   float3 result;
-  if (GB(GB_MASK) < 0.5f) {
+  if (GB(GB_MASK) < 0.5f && has_v) {
+    result = env_chain(background, env_w, env_h, 1, -normalize(Vg), env_rotation, 0.0f);
+  } else if (GB(GB_MASK) < 0.5f) {
     float sx = (2.0f * ((float)x + 0.5f) / (float)width - 1.0f) * cam.tan_half_fov * cam.aspect;
     float sy = (1.0f - 2.0f * ((float)y + 0.5f) / (float)height) * cam.tan_half_fov;
     float3 d = normalize((float3)(cam.forward[0], cam.forward[1], cam.forward[2]) +
@@ -76,7 +83,7 @@ __kernel void shade(__global const float* restrict gb, int width, int height, br
     Nc = dot(Nc, Nc) > 1e-12f ? normalize(Nc) : N;
     float3 Tc, Bc;
     frame_from_normal(Nc, &Tc, &Bc);
-    float3 V = normalize(eye - P);
+    float3 V = has_v ? normalize(Vg) : normalize(eye - P);
 
     brdfcl_material_params q;
     q.base_color[0] = GB(GB_BASE_R); q.base_color[1] = GB(GB_BASE_G); q.base_color[2] = GB(GB_BASE_B);
@@ -170,7 +177,8 @@ __kernel void shade(__global const float* restrict gb, int width, int height, br
                                     q.clearcoat_roughness * (float)(prefilter_levels - 1));
       ibl = (1.0f - coat) * ibl + coat * coat_light * (abc.x + abc.y);
     }
-    result += ibl;
+    /* glTF occlusion dims indirect light only: punctual lights and emission are not touched. */
+    result += ibl * clamp(GB(GB_OCCLUSION), 0.0f, 1.0f);
     /* 004 "Emission": the coat darkens what is below it. */
     result += (float3)(GB(GB_EMISSIVE_R), GB(GB_EMISSIVE_G), GB(GB_EMISSIVE_B)) * (1.0f - coat);
   }

@@ -6,7 +6,9 @@
 
 /* G-buffer planes, width * height floats each, in this order. The host fills absent optional
    channels with their defaults: T = 0 (build a frame from N), emissive/sheen/clearcoat/
-   anisotropy = 0, clearcoatN = 0 (use N). */
+   anisotropy = 0, clearcoatN = 0 (use N), occlusion = 1, V = 0. A V of zero length is the
+   "no V" flag: the pixel's view comes from the camera record (a G-buffer's V is never zero:
+   the reader and the host reject it). */
 enum {
   GB_PX, GB_PY, GB_PZ, GB_NX, GB_NY, GB_NZ, GB_TX, GB_TY, GB_TZ,
   GB_BASE_R, GB_BASE_G, GB_BASE_B, GB_METALLIC, GB_ROUGHNESS, GB_MASK,
@@ -14,6 +16,7 @@ enum {
   GB_SHEEN_R, GB_SHEEN_G, GB_SHEEN_B, GB_SHEEN_ROUGHNESS,
   GB_CLEARCOAT, GB_CLEARCOAT_ROUGHNESS, GB_CCN_X, GB_CCN_Y, GB_CCN_Z,
   GB_ANISO_STRENGTH, GB_ANISO_ROTATION,
+  GB_OCCLUSION, GB_VX, GB_VY, GB_VZ,
   GB_PLANES
 };
 

@@ -1,6 +1,6 @@
-// Image files: OpenEXR RGB read/write (environments, linear renders), the checked low-level EXR
-// channel reader shared with the G-buffer, and the PNG display pipeline
-// (exposure -> Khronos PBR Neutral tone mapping -> sRGB OETF -> 8-bit PNG).
+// Image files: OpenEXR RGB read/write (environments, linear renders), Radiance HDR environments,
+// the checked low-level EXR channel reader shared with the G-buffer, and the PNG display
+// pipeline (exposure -> Khronos PBR Neutral tone mapping -> sRGB OETF -> 8-bit PNG).
 #pragma once
 #include <cstdint>
 #include <functional>
@@ -36,6 +36,17 @@ void writeExrRgb(const std::string& path, int width, int height, const std::vect
 // Reads R, G, B of a single-part EXR (checked as readExrChannels does) into interleaved rgb.
 // A luminance-only file (channel Y, no R/G/B) is read as grey (r = g = b = Y).
 std::vector<float> readExrRgb(const std::string& path, int& width, int& height);
+
+// Reads an equirectangular Radiance RGBE file (FORMAT=32-bit_rle_rgbe, "-Y h +X w", flat or
+// run-length encoded) into interleaved linear rgb, top row first, as stb_image decodes it
+// (m * 2^(e - 136), no gamma). Limits as for EXR (65536 per side, 2^28 pixels). A missing,
+// truncated or corrupt file, another format or orientation: one-line brdfcl::Error naming it.
+std::vector<float> readRadianceHdr(const std::string& path, int& width, int& height);
+
+// An environment image: Radiance HDR or OpenEXR, chosen by the file's first bytes (not its
+// name), then read as readRadianceHdr or readExrRgb; a NaN or infinite texel is an error. The
+// values are returned as stored (environmentPlanes clamps negatives to 0).
+std::vector<float> readEnvironmentRgb(const std::string& path, int& width, int& height);
 
 // Khronos PBR Neutral tone mapper (KhronosGroup/ToneMapping, "PBR Neutral"). Constants:
 // startCompression = 0.8 - 0.04 (where highlight compression begins, after the 0.04 Fresnel

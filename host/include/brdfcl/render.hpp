@@ -25,7 +25,8 @@ Scene spheresScene();
 GBuffer renderSpheresGBuffer(Runtime& rt, const Scene& scene, int width, int height);
 
 // Equirectangular RGB (3 planes) of a scene's environment, intensity applied; `builtin` kinds:
-// "sky", "studio", "uniform" (radiance 1: the white furnace).
+// "sky", "studio", "uniform" (radiance 1: the white furnace). A file (readEnvironmentRgb) has its
+// negative texels taken as 0.
 std::vector<float> environmentPlanes(const Environment& env, int& width, int& height);
 
 // C(mu): the Lambert albedo weighted by Schlick's (1 - V.H)^5, integral of w (N.L) / pi over L.

@@ -19,8 +19,8 @@ struct Light {
 
 struct Environment {
   bool builtin = true;
-  std::string builtinKind = "sky";  // "sky" or "studio"
-  std::string path;                 // when !builtin: equirectangular EXR, resolved against the scene's directory
+  std::string builtinKind = "sky";  // "sky", "studio" or "uniform"
+  std::string path;                 // when !builtin: equirectangular EXR or Radiance HDR, resolved against the scene's directory
   float intensity = 1.0f;
   float rotation = 0.0f;  // radians about +Y
 };
@@ -38,7 +38,14 @@ struct Scene {
 Scene readScene(const std::string& path);
 // The same from text; sourceName prefixes messages, baseDir resolves a relative environment path
 // ("" = the current directory). The environment file must exist and be readable; its contents
-// are read later (readExrRgb).
+// are read later (readEnvironmentRgb: OpenEXR or Radiance HDR, whatever the file's name).
 Scene parseScene(const std::string& json, const std::string& sourceName, const std::string& baseDir);
+
+// The command line's environment: spec "builtin" (= "sky"), "sky", "studio", "uniform", or a
+// file ending in .hdr or .exr (any case; a relative path is taken from the current directory)
+// that exists and is readable. Its pixels are read later, as for the scene's. An unknown spec,
+// an unreadable file, a negative or non-finite intensity or a non-finite rotation (radians about
+// +Y) is a one-line brdfcl::Error naming --environment.
+Environment parseEnvironmentSpec(const std::string& spec, float intensity, float rotation);
 
 }  // namespace brdfcl

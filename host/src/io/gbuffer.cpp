@@ -52,6 +52,8 @@ const Field kFields[] = {
     {"clearcoatN", "XYZ", nullptr, false, &GBuffer::clearcoatN},
     {"anisotropyStrength", "", nullptr, false, &GBuffer::anisotropyStrength},
     {"anisotropyRotation", "", nullptr, false, &GBuffer::anisotropyRotation},
+    {"occlusion", "", nullptr, false, &GBuffer::occlusion},
+    {"V", "XYZ", nullptr, false, &GBuffer::V},
 };
 
 std::vector<std::string> channelNames(const std::string& prefix, const char* suffixes) {
@@ -152,6 +154,16 @@ GBuffer readGBuffer(const std::string& path) {
       const std::vector<float>& plane = planes[s.firstPlane + c];
       for (std::size_t i = 0; i < n; ++i) out[k * i + c] = plane[i];
     }
+  }
+  // V is not renormalized (as N and T are not), but it has to have a direction: a zero vector
+  // would silently fall back to no view at all.
+  for (std::size_t i = 0; i < g.V.size() / 3; ++i) {
+    const double x = g.V[3 * i], y = g.V[3 * i + 1], z = g.V[3 * i + 2];
+    if (x * x + y * y + z * z < 1e-12)
+      throw Error(shown + ": pixel (" + std::to_string(i % std::size_t(g.width)) + ", " +
+                  std::to_string(i / std::size_t(g.width)) +
+                  ") has a zero-length view direction V; write the unit direction towards the viewer, or leave "
+                  "V.X V.Y V.Z out to use the scene camera");
   }
   return g;
 }

@@ -1,5 +1,7 @@
-// Environment images: the built-in procedural sky, studio and uniform (furnace) environments,
-// or an equirectangular EXR, in the layout of kernels/common/environment.h (3 planes, v = 0 at +Y).
+// Environment images: the built-in procedural sky, studio and uniform (furnace) environments, or
+// an equirectangular EXR or Radiance HDR file, in the layout of kernels/common/environment.h
+// (3 planes, v = 0 at +Y).
+#include <algorithm>
 #include <cmath>
 
 #include <fmt/format.h>
@@ -64,13 +66,15 @@ std::vector<float> environmentPlanes(const Environment& env, int& width, int& he
       }
     return planes;
   }
-  const auto rgb = readExrRgb(env.path, width, height);
+  const auto rgb = readEnvironmentRgb(env.path, width, height);
   if (width < 8 || height < 4)
     throw Error(fmt::format("{}: environment of {}x{} texels is too small; use at least 8x4", env.path, width, height));
   const std::size_t n = std::size_t(width) * height;
   planes.resize(3 * n);
   for (std::size_t i = 0; i < n; ++i)
-    for (int c = 0; c < 3; ++c) planes[c * n + i] = rgb[3 * i + c] * env.intensity;
+    // Lossy EXR compression (DWAA/DWAB) rings slightly below zero (to -0.004 in Blender's studio
+    // lights); negative radiance has no meaning and would make dark pixels negative.
+    for (int c = 0; c < 3; ++c) planes[c * n + i] = std::max(rgb[3 * i + c], 0.0f) * env.intensity;
   return planes;
 }
 

@@ -103,6 +103,10 @@ std::vector<float> gbufferPlanes(const GBuffer& g) {
   put3(g.clearcoatN, GB_CCN_X);
   put1(g.anisotropyStrength, GB_ANISO_STRENGTH);
   put1(g.anisotropyRotation, GB_ANISO_ROTATION);
+  if (g.occlusion.empty())
+    std::fill(planes.begin() + GB_OCCLUSION * n, planes.begin() + (GB_OCCLUSION + 1) * n, 1.0f);
+  put1(g.occlusion, GB_OCCLUSION);
+  put3(g.V, GB_VX);
   // The canonical EXR channel of each plane (docs/gbuffer.md), in the order of shading_layout.h:
   // what the user can look up in the file, rather than the plane's number.
   static const char* const kChannel[] = {
@@ -110,13 +114,22 @@ std::vector<float> gbufferPlanes(const GBuffer& g) {
       "T.X",          "T.Y",          "T.Z",          "baseColor.R", "baseColor.G", "baseColor.B",
       "metallic",     "roughness",    "mask",         "emissive.R", "emissive.G", "emissive.B",
       "sheenColor.R", "sheenColor.G", "sheenColor.B", "sheenRoughness", "clearcoat", "clearcoatRoughness",
-      "clearcoatN.X", "clearcoatN.Y", "clearcoatN.Z", "anisotropyStrength", "anisotropyRotation"};
+      "clearcoatN.X", "clearcoatN.Y", "clearcoatN.Z", "anisotropyStrength", "anisotropyRotation",
+      "occlusion",    "V.X",          "V.Y",          "V.Z"};
   static_assert(sizeof kChannel / sizeof kChannel[0] == GB_PLANES);
   for (std::size_t i = 0; i < planes.size(); ++i)
     if (!std::isfinite(planes[i]))
       throw Error(fmt::format("G-buffer pixel ({}, {}) has a non-finite value ({}) in channel '{}'; fix the renderer's output",
                               (i % n) % g.width, (i % n) / g.width, std::isnan(planes[i]) ? "nan" : planes[i] > 0 ? "inf" : "-inf",
                               kChannel[i / n]));
+  // A zero V would make the kernel fall back to the camera (its "no V" flag), silently.
+  for (std::size_t i = 0; i < g.V.size() / 3; ++i) {
+    const double x = g.V[3 * i], y = g.V[3 * i + 1], z = g.V[3 * i + 2];
+    if (x * x + y * y + z * z < 1e-12)
+      throw Error(fmt::format("G-buffer pixel ({}, {}) has a zero-length view direction V; write the unit direction "
+                              "towards the viewer, or leave V out to use the scene camera",
+                              i % g.width, i / g.width));
+  }
   return planes;
 }
 
