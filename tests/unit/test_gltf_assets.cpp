@@ -67,7 +67,7 @@ class GltfAssets : public ::testing::TestWithParam<Model> {};
 TEST_P(GltfAssets, RendersWithItsDefaultCamera) {
   const Model& m = GetParam();
   const std::string path = assetPath(m.file);
-  if (path.empty()) GTEST_SKIP() << assetsSkipMessage();
+  if (path.empty()) GTEST_SKIP() << missingAsset(m.file);
   const gltf::Asset asset = gltf::load(path);
   const gltf::Raycaster raycaster(asset);
   const int w = 640, h = 360;
@@ -91,7 +91,7 @@ TEST_P(GltfAssets, RendersWithItsDefaultCamera) {
 TEST_P(GltfAssets, MatchesItsGoldenRender) {
   const Model& m = GetParam();
   const std::string path = assetPath(m.file);
-  if (path.empty()) GTEST_SKIP() << assetsSkipMessage();
+  if (path.empty()) GTEST_SKIP() << missingAsset(m.file);
   const gltf::Asset asset = gltf::load(path);
   const gltf::Raycaster raycaster(asset);
   const int w = 192, h = 108;
@@ -135,7 +135,7 @@ INSTANTIATE_TEST_SUITE_P(Models, GltfAssets, ::testing::ValuesIn(kModels),
 // Through the CLI as a user runs it: exit 0 and a PNG of the requested size.
 TEST(GltfAssetsCli, RenderExitsZeroAndWritesThePng) {
   const std::string path = assetPath("ClearCoatCarPaint/glTF-Binary/ClearCoatCarPaint.glb");
-  if (path.empty()) GTEST_SKIP() << assetsSkipMessage();
+  if (path.empty()) GTEST_SKIP() << missingAsset("ClearCoatCarPaint/glTF-Binary/ClearCoatCarPaint.glb");
   ScratchDir dir("gltf-cli");
   const auto r = runProcess({BRDFCL_CLI_PATH, "render", "--gltf", path, "--size", "64x36", "--spp", "1", "--out",
                              dir.path("car.png")},
@@ -149,7 +149,7 @@ TEST(GltfAssetsCli, RenderExitsZeroAndWritesThePng) {
 
 TEST(GltfAssetsCli, Ktx2LampFailsNamingTheExtension) {
   const std::string path = assetPath("AnisotropyBarnLamp/glTF-KTX2-Basisu/AnisotropyBarnLamp.gltf");
-  if (path.empty()) GTEST_SKIP() << assetsSkipMessage();
+  if (path.empty()) GTEST_SKIP() << missingAsset("AnisotropyBarnLamp/glTF-KTX2-Basisu/AnisotropyBarnLamp.gltf");
   ScratchDir dir("gltf-ktx2");
   const auto r = runProcess({BRDFCL_CLI_PATH, "render", "--gltf", path, "--out", dir.path("lamp.png")}, dir.dir());
   EXPECT_EQ(r.status, 2) << r.describe();
@@ -160,7 +160,7 @@ TEST(GltfAssetsCli, Ktx2LampFailsNamingTheExtension) {
 
 TEST(GltfAssetsCli, BarnLampWarnsAboutTransmissionAndRenders) {
   const std::string path = assetPath("AnisotropyBarnLamp/glTF/AnisotropyBarnLamp.gltf");
-  if (path.empty()) GTEST_SKIP() << assetsSkipMessage();
+  if (path.empty()) GTEST_SKIP() << missingAsset("AnisotropyBarnLamp/glTF/AnisotropyBarnLamp.gltf");
   ScratchDir dir("gltf-lamp");
   const auto r = runProcess({BRDFCL_CLI_PATH, "gbuffer", "--gltf", path, "--size", "32x32", "--out", dir.path("g.exr")},
                             dir.dir());
