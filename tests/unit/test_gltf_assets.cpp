@@ -155,7 +155,8 @@ TEST(GltfAssetsCli, Ktx2LampFailsNamingTheExtension) {
   EXPECT_EQ(r.status, 2) << r.describe();
   ASSERT_EQ(r.errorLines().size(), 1u) << r.describe();
   EXPECT_CONTAINS(r.errorLines()[0], "KHR_texture_basisu");
-  EXPECT_TRUE(dir.list().empty()) << "no output file may be left";
+  for (const auto& name : dir.list())
+    EXPECT_TRUE(name == "stdout" || name == "stderr") << "output file left: " << name;
 }
 
 TEST(GltfAssetsCli, BarnLampWarnsAboutTransmissionAndRenders) {
