@@ -404,13 +404,14 @@ std::optional<Light> Document::nodeLight(std::size_t node) const {
     const json* spot = member(l, "spot");
     const json empty = json::object();
     const json& s = spot ? object(*spot, path + ".spot") : empty;
-    out.innerCone = float(number(s, "innerConeAngle", path + ".spot", 0.0, "a number in [0, pi/2)", nonNegative));
-    out.outerCone = float(number(s, "outerConeAngle", path + ".spot", 0.7853981634, "a number in (0, pi/2]",
-                                 [](double d) { return d > 0.0 && d <= kHalfPi + 1e-6; }));
-    if (out.innerCone >= out.outerCone)
-      fail(path + ".spot.innerConeAngle", "expected a number below outerConeAngle (" +
-                                              brdfcl::detail::formatNumber(out.outerCone) + "), got " +
-                                              brdfcl::detail::formatNumber(out.innerCone));
+    const double inner = number(s, "innerConeAngle", path + ".spot", 0.0, "a number in [0, pi/2)", nonNegative);
+    const double outer = number(s, "outerConeAngle", path + ".spot", 0.7853981634, "a number in (0, pi/2]",
+                                [](double d) { return d > 0.0 && d <= kHalfPi + 1e-6; });
+    if (inner >= outer)
+      fail(path + ".spot.innerConeAngle", "expected a number below outerConeAngle (" + brdfcl::detail::formatNumber(outer) +
+                                              "), got " + brdfcl::detail::formatNumber(inner));
+    out.innerCone = float(inner);
+    out.outerCone = float(outer);
   }
   out.position = {0.0f, 0.0f, 0.0f};
   out.direction = {0.0f, 0.0f, -1.0f};

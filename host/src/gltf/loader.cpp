@@ -273,7 +273,7 @@ std::string oneLine(const std::string& text) {
     std::size_t end = text.find('\n', start);
     if (end == std::string::npos) end = text.size();
     std::string line = text.substr(start, end - start);
-    while (!line.empty() && (line.back() == '\r' || line.back() == ' ')) line.pop_back();
+    while (!line.empty() && (line.back() == '\r' || line.back() == ' ' || line.back() == '.')) line.pop_back();
     if (!line.empty()) out += (out.empty() ? "" : "; ") + line;
     start = end + 1;
   }
