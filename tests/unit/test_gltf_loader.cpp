@@ -690,6 +690,8 @@ TEST_F(GltfErrors, BadJsonAndNotGltf) {
   const std::string m = bytesError("{\"asset\": {}}", "nover.gltf");
   EXPECT_CONTAINS(m, "nover.gltf: ");
   EXPECT_CONTAINS(m, "re-export it");
+  const std::string deep = "{\"asset\": {\"version\": \"2.0\"}, \"extras\": " + std::string(100000, '[') + std::string(100000, ']') + "}";
+  EXPECT_CONTAINS(bytesError(deep, "deep.gltf"), "deep.gltf: the JSON nests deeper than 128 levels (in extras?); glTF needs far fewer: re-export the file");
   EXPECT_CONTAINS(errorOf([&] { gltf::load(scratch.path("absent.gltf")); }), "cannot read '");
   EXPECT_CONTAINS(errorOf([&] { gltf::load(scratch.path("absent.gltf")); }), "absent.gltf': No such file or directory");
 }
