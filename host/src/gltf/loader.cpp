@@ -2,11 +2,9 @@
 // brdfcl checks what tinygltf trusts (the GLB header, buffer view ranges, the node graph) before
 // tinygltf or the walk relies on it, and owns file reading and image decoding through tinygltf's
 // callbacks, so that every failure is one line naming the file and the JSON path.
-#include <sys/stat.h>
 #include <tiny_gltf.h>
 
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
 #include <cstring>
 #include <map>
