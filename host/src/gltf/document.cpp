@@ -47,6 +47,10 @@ const json* Document::member(const json& obj, const char* key) const {
   return it == obj.end() ? nullptr : &*it;
 }
 
+const json* Document::element(const json& array, std::size_t i) const {
+  return array.is_array() && i < array.size() ? &array[i] : nullptr;
+}
+
 const json& Document::object(const json& v, const std::string& path) const {
   if (!v.is_object()) fail(path, "expected an object, got " + brdfcl::detail::describeJson(v));
   return v;
@@ -313,15 +317,19 @@ std::vector<std::string> Document::variants() const {
 
 int Document::variantMaterial(std::size_t mesh, std::size_t prim, int variant, int fallback) const {
   if (variant < 0) return fallback;
-  const json& pj = doc_["meshes"][mesh]["primitives"][prim];
-  const json* ext = member(pj, "extensions");
+  const json* meshes = member(doc_, "meshes");
+  const json* mj = meshes ? element(*meshes, mesh) : nullptr;
+  const json* prims = mj ? member(*mj, "primitives") : nullptr;
+  const json* pj = prims ? element(*prims, prim) : nullptr;
+  const json* ext = pj ? member(*pj, "extensions") : nullptr;
   const json* v = ext ? member(*ext, "KHR_materials_variants") : nullptr;
   const json* maps = v ? member(*v, "mappings") : nullptr;
   if (!maps) return fallback;
   const std::string p = "meshes[" + std::to_string(mesh) + "].primitives[" + std::to_string(prim) +
                         "].extensions.KHR_materials_variants.mappings";
   if (!maps->is_array()) fail(p, "expected an array of mappings, got " + brdfcl::detail::describeJson(*maps));
-  const std::size_t materialCount = member(doc_, "materials") && doc_["materials"].is_array() ? doc_["materials"].size() : 0;
+  const json* materials = member(doc_, "materials");
+  const std::size_t materialCount = materials && materials->is_array() ? materials->size() : 0;
   for (std::size_t k = 0; k < maps->size(); ++k) {
     const json& mapping = object((*maps)[k], at(p, k));
     const json* list = member(mapping, "variants");
@@ -335,7 +343,10 @@ int Document::variantMaterial(std::size_t mesh, std::size_t prim, int variant, i
 
 Camera Document::camera(int i) const {
   const std::string path = at("cameras", std::size_t(i));
-  const json& c = object(doc_["cameras"][std::size_t(i)], path);
+  const json* cameras = member(doc_, "cameras");
+  const json* cj = cameras ? element(*cameras, std::size_t(i)) : nullptr;
+  if (!cj) fail(path, "missing; re-export the file");
+  const json& c = object(*cj, path);
   Camera cam;
   cam.index = i;
   if (const json* n = member(c, "name"); n && n->is_string()) cam.name = n->get<std::string>();
@@ -375,8 +386,9 @@ Camera Document::camera(int i) const {
 }
 
 std::optional<Light> Document::nodeLight(std::size_t node) const {
-  const json& n = doc_["nodes"][node];
-  const json* ext = member(n, "extensions");
+  const json* nodes = member(doc_, "nodes");
+  const json* n = nodes ? element(*nodes, node) : nullptr;
+  const json* ext = n ? member(*n, "extensions") : nullptr;
   const json* kl = ext ? member(*ext, "KHR_lights_punctual") : nullptr;
   if (!kl) return std::nullopt;
   const json* rootExt = member(doc_, "extensions");
@@ -404,13 +416,14 @@ std::optional<Light> Document::nodeLight(std::size_t node) const {
     const json* spot = member(l, "spot");
     const json empty = json::object();
     const json& s = spot ? object(*spot, path + ".spot") : empty;
-    out.innerCone = float(number(s, "innerConeAngle", path + ".spot", 0.0, "a number in [0, pi/2)", nonNegative));
-    out.outerCone = float(number(s, "outerConeAngle", path + ".spot", 0.7853981634, "a number in (0, pi/2]",
-                                 [](double d) { return d > 0.0 && d <= kHalfPi + 1e-6; }));
-    if (out.innerCone >= out.outerCone)
-      fail(path + ".spot.innerConeAngle", "expected a number below outerConeAngle (" +
-                                              brdfcl::detail::formatNumber(out.outerCone) + "), got " +
-                                              brdfcl::detail::formatNumber(out.innerCone));
+    const double inner = number(s, "innerConeAngle", path + ".spot", 0.0, "a number in [0, pi/2)", nonNegative);
+    const double outer = number(s, "outerConeAngle", path + ".spot", 0.7853981634, "a number in (0, pi/2]",
+                                [](double d) { return d > 0.0 && d <= kHalfPi + 1e-6; });
+    if (inner >= outer)
+      fail(path + ".spot.innerConeAngle", "expected a number below outerConeAngle (" + brdfcl::detail::formatNumber(outer) +
+                                              "), got " + brdfcl::detail::formatNumber(inner));
+    out.innerCone = float(inner);
+    out.outerCone = float(outer);
   }
   out.position = {0.0f, 0.0f, 0.0f};
   out.direction = {0.0f, 0.0f, -1.0f};

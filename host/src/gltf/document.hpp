@@ -35,7 +35,10 @@ class Document {
   std::optional<Light> nodeLight(std::size_t node) const;
 
  private:
+  // Safe lookups: nullptr where the document has no such member or element (never operator[]
+  // on a const json, which asserts).
   const nlohmann::json* member(const nlohmann::json& obj, const char* key) const;
+  const nlohmann::json* element(const nlohmann::json& array, std::size_t i) const;
   const nlohmann::json& object(const nlohmann::json& v, const std::string& path) const;
   double checked(const nlohmann::json& v, const std::string& path, const char* expected, bool (*ok)(double)) const;
   double number(const nlohmann::json& obj, const char* key, const std::string& path, double fallback,

@@ -2,11 +2,9 @@
 // brdfcl checks what tinygltf trusts (the GLB header, buffer view ranges, the node graph) before
 // tinygltf or the walk relies on it, and owns file reading and image decoding through tinygltf's
 // callbacks, so that every failure is one line naming the file and the JSON path.
-#include <sys/stat.h>
 #include <tiny_gltf.h>
 
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
 #include <cstring>
 #include <map>
@@ -92,6 +90,24 @@ std::string glbJson(const std::string& b, const std::string& source, std::size_t
   return b.substr(20, std::size_t(jsonLength));
 }
 
+// tinygltf copies "extras" and "extensions" recursively: a hostile file nesting arrays a million
+// deep would overflow the stack there, so the depth is checked here, without recursion.
+constexpr std::size_t kMaxDepth = 128;
+
+std::size_t nestingDepth(const json& root) {
+  std::size_t deepest = 0;
+  std::vector<std::pair<const json*, std::size_t>> stack{{&root, 1}};
+  while (!stack.empty()) {
+    const auto [v, depth] = stack.back();
+    stack.pop_back();
+    deepest = std::max(deepest, depth);
+    if (depth > kMaxDepth) break;
+    if (v->is_structured())
+      for (const json& child : *v) stack.emplace_back(&child, depth + 1);
+  }
+  return deepest;
+}
+
 json parseJson(const std::string& text, const std::string& source) {
   json doc;
   try {
@@ -101,6 +117,9 @@ json parseJson(const std::string& text, const std::string& source) {
                 "; the file is not glTF 2.0 or is corrupt");
   }
   if (!doc.is_object()) throw Error(source + ": expected a glTF JSON object at the top level, got " + brdfcl::detail::describeJson(doc));
+  if (nestingDepth(doc) > kMaxDepth)
+    throw Error(source + ": the JSON nests deeper than " + std::to_string(kMaxDepth) +
+                " levels (in extras?); glTF needs far fewer: re-export the file");
   return doc;
 }
 
@@ -273,7 +292,7 @@ std::string oneLine(const std::string& text) {
     std::size_t end = text.find('\n', start);
     if (end == std::string::npos) end = text.size();
     std::string line = text.substr(start, end - start);
-    while (!line.empty() && (line.back() == '\r' || line.back() == ' ')) line.pop_back();
+    while (!line.empty() && (line.back() == '\r' || line.back() == ' ' || line.back() == '.')) line.pop_back();
     if (!line.empty()) out += (out.empty() ? "" : "; ") + line;
     start = end + 1;
   }

@@ -163,6 +163,13 @@ Primitive Walk::assemble(const tinygltf::Primitive& prim, const std::string& whe
   };
   const std::string& src = doc.source();
   if (attr("POSITION") < 0) doc.fail(where + ".attributes", "no POSITION; every triangle primitive needs one: re-export the file");
+  auto exists = [&](int a, const std::string& path) {
+    if (a >= 0 && std::size_t(a) >= model.accessors.size())
+      doc.fail(path, "accessor " + std::to_string(a) + " does not exist (the file has " +
+                         std::to_string(model.accessors.size()) + "); re-export the file");
+  };
+  for (const auto& [name, a] : prim.attributes) exists(a, where + ".attributes." + brdfcl::detail::printable(name, 60));
+  exists(prim.indices, where + ".indices");
   Decoded pos = readAccessor(model, attr("POSITION"), {3}, "POSITION", src, remaining());
   const std::size_t n = pos.count;
   take(n, where);
