@@ -49,7 +49,7 @@ class Raycaster {
   // the ray leaves the scene.
   GBuffer trace(const View& view, int width, int height, float jx = 0.5f, float jy = 0.5f) const;
   // The same into `out`, reusing its channels' memory when it already holds a G-buffer of this
-  // size: a fresh 1080p G-buffer is 270 MB of pages for the kernel to fault in (~0.2 s).
+  // size (a 1080p G-buffer is 270 MB: fresh pages cost the kernel page faults and zeroing).
   void trace(const View& view, int width, int height, float jx, float jy, GBuffer& out) const;
 
   // Memory held by the textures' mip chains (16-bit channels, only those some slot reads).
