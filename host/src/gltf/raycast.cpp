@@ -128,8 +128,8 @@ void Raycaster::trace(const View& view, int width, int height, float jx, float j
     work();
     for (std::thread& th : pool) th.join();
   };
-  // A 1080p G-buffer is 270 MB of zeroed pages: allocating the channels on every core halves
-  // that serial part of the frame.
+  // A 1080p G-buffer is 270 MB of zeroed pages: channels allocated on every core, so that their
+  // page faults and zeroing do not all fall on one.
   const std::array<std::pair<std::vector<float>*, int>, 17> channels{{
       {&g.P, 3}, {&g.N, 3}, {&g.T, 3}, {&g.baseColor, 3}, {&g.emissive, 3}, {&g.sheenColor, 3}, {&g.clearcoatN, 3},
       {&g.V, 3}, {&g.metallic, 1}, {&g.roughness, 1}, {&g.mask, 1}, {&g.sheenRoughness, 1}, {&g.clearcoat, 1},
@@ -149,78 +149,76 @@ void Raycaster::trace(const View& view, int width, int height, float jx, float j
   const float inf = std::numeric_limits<float>::infinity();
 
   auto tracePixel = [&](RayContext& rc, int x, int y) {
-    {
-      const double s = 2.0 * (x + jx) / width - 1.0, t = 1.0 - 2.0 * (y + jy) / height;
-      double o[3], d[3];
-      for (int k = 0; k < 3; ++k) {
-        if (view.orthographic) {
-          o[k] = view.position[k] + s * ext * aspect * r[k] + t * ext * u[k];
-          d[k] = f[k];
-        } else {
-          o[k] = view.position[k];
-          d[k] = f[k] + s * ext * aspect * r[k] + t * ext * u[k];
-        }
+    const double s = 2.0 * (x + jx) / width - 1.0, t = 1.0 - 2.0 * (y + jy) / height;
+    double o[3], d[3];
+    for (int k = 0; k < 3; ++k) {
+      if (view.orthographic) {
+        o[k] = view.position[k] + s * ext * aspect * r[k] + t * ext * u[k];
+        d[k] = f[k];
+      } else {
+        o[k] = view.position[k];
+        d[k] = f[k] + s * ext * aspect * r[k] + t * ext * u[k];
       }
-      const double len = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-      for (double& c : d) c /= len;
-      // Distances along the ray to the near and far planes, which are perpendicular to forward.
-      const double cosF = d[0] * f[0] + d[1] * f[1] + d[2] * f[2];
-      RTCRayHit rh;
-      rh.ray.org_x = static_cast<float>(o[0]);
-      rh.ray.org_y = static_cast<float>(o[1]);
-      rh.ray.org_z = static_cast<float>(o[2]);
-      rh.ray.dir_x = static_cast<float>(d[0]);
-      rh.ray.dir_y = static_cast<float>(d[1]);
-      rh.ray.dir_z = static_cast<float>(d[2]);
-      rh.ray.tnear = static_cast<float>(std::max(0.0, view.znear / cosF));
-      rh.ray.tfar = view.zfar > 0.0 ? static_cast<float>(view.zfar / cosF) : inf;
-      rh.ray.time = 0.0f;
-      rh.ray.mask = 0xFFFFFFFFu;
-      rh.ray.id = 0;
-      rh.ray.flags = 0;
-      rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-      rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
-      rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-      rtcIntersect1(st.scene, &rc.embree, &rh);
-
-      const std::size_t i = static_cast<std::size_t>(y) * width + x;
-      float V[3] = {static_cast<float>(-d[0]), static_cast<float>(-d[1]), static_cast<float>(-d[2])};
-      if (rh.hit.geomID != RTC_INVALID_GEOMETRY_ID) {
-        Hit h;
-        h.prim = static_cast<int>(rh.hit.geomID);
-        h.tri = rh.hit.primID;
-        h.u = rh.hit.u;
-        h.v = rh.hit.v;
-        h.dir = {rh.ray.dir_x, rh.ray.dir_y, rh.ray.dir_z};
-        h.coneWidth = rc.orthographic ? rc.coneWidth : rh.ray.tfar * rc.coneSpread;
-        const SurfacePoint sp = st.surfaces->evaluate(h);
-        if (!view.orthographic) {
-          const double e[3] = {view.position[0] - sp.P[0], view.position[1] - sp.P[1], view.position[2] - sp.P[2]};
-          const double el = std::sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]);
-          if (el > 0.0 && std::isfinite(el))
-            for (int k = 0; k < 3; ++k) V[k] = static_cast<float>(e[k] / el);
-        }
-        for (int k = 0; k < 3; ++k) {
-          g.P[3 * i + k] = sp.P[k];
-          g.N[3 * i + k] = sp.N[k];
-          g.T[3 * i + k] = sp.T[k];
-          g.baseColor[3 * i + k] = sp.baseColor[k];
-          g.emissive[3 * i + k] = sp.emissive[k];
-          g.sheenColor[3 * i + k] = sp.sheenColor[k];
-          g.clearcoatN[3 * i + k] = sp.clearcoatN[k];
-        }
-        g.mask[i] = 1.0f;
-        g.metallic[i] = sp.metallic;
-        g.roughness[i] = sp.roughness;
-        g.sheenRoughness[i] = sp.sheenRoughness;
-        g.clearcoat[i] = sp.clearcoat;
-        g.clearcoatRoughness[i] = sp.clearcoatRoughness;
-        g.anisotropyStrength[i] = sp.anisotropyStrength;
-        g.anisotropyRotation[i] = sp.anisotropyRotation;
-        g.occlusion[i] = sp.occlusion;
-      }
-      for (int k = 0; k < 3; ++k) g.V[3 * i + k] = V[k];
     }
+    const double len = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    for (double& c : d) c /= len;
+    // Distances along the ray to the near and far planes, which are perpendicular to forward.
+    const double cosF = d[0] * f[0] + d[1] * f[1] + d[2] * f[2];
+    RTCRayHit rh;
+    rh.ray.org_x = static_cast<float>(o[0]);
+    rh.ray.org_y = static_cast<float>(o[1]);
+    rh.ray.org_z = static_cast<float>(o[2]);
+    rh.ray.dir_x = static_cast<float>(d[0]);
+    rh.ray.dir_y = static_cast<float>(d[1]);
+    rh.ray.dir_z = static_cast<float>(d[2]);
+    rh.ray.tnear = static_cast<float>(std::max(0.0, view.znear / cosF));
+    rh.ray.tfar = view.zfar > 0.0 ? static_cast<float>(view.zfar / cosF) : inf;
+    rh.ray.time = 0.0f;
+    rh.ray.mask = 0xFFFFFFFFu;
+    rh.ray.id = 0;
+    rh.ray.flags = 0;
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(st.scene, &rc.embree, &rh);
+
+    const std::size_t i = static_cast<std::size_t>(y) * width + x;
+    float V[3] = {static_cast<float>(-d[0]), static_cast<float>(-d[1]), static_cast<float>(-d[2])};
+    if (rh.hit.geomID != RTC_INVALID_GEOMETRY_ID) {
+      Hit h;
+      h.prim = static_cast<int>(rh.hit.geomID);
+      h.tri = rh.hit.primID;
+      h.u = rh.hit.u;
+      h.v = rh.hit.v;
+      h.dir = {rh.ray.dir_x, rh.ray.dir_y, rh.ray.dir_z};
+      h.coneWidth = rc.orthographic ? rc.coneWidth : rh.ray.tfar * rc.coneSpread;
+      const SurfacePoint sp = st.surfaces->evaluate(h);
+      if (!view.orthographic) {
+        const double e[3] = {view.position[0] - sp.P[0], view.position[1] - sp.P[1], view.position[2] - sp.P[2]};
+        const double el = std::sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]);
+        if (el > 0.0 && std::isfinite(el))
+          for (int k = 0; k < 3; ++k) V[k] = static_cast<float>(e[k] / el);
+      }
+      for (int k = 0; k < 3; ++k) {
+        g.P[3 * i + k] = sp.P[k];
+        g.N[3 * i + k] = sp.N[k];
+        g.T[3 * i + k] = sp.T[k];
+        g.baseColor[3 * i + k] = sp.baseColor[k];
+        g.emissive[3 * i + k] = sp.emissive[k];
+        g.sheenColor[3 * i + k] = sp.sheenColor[k];
+        g.clearcoatN[3 * i + k] = sp.clearcoatN[k];
+      }
+      g.mask[i] = 1.0f;
+      g.metallic[i] = sp.metallic;
+      g.roughness[i] = sp.roughness;
+      g.sheenRoughness[i] = sp.sheenRoughness;
+      g.clearcoat[i] = sp.clearcoat;
+      g.clearcoatRoughness[i] = sp.clearcoatRoughness;
+      g.anisotropyStrength[i] = sp.anisotropyStrength;
+      g.anisotropyRotation[i] = sp.anisotropyRotation;
+      g.occlusion[i] = sp.occlusion;
+    }
+    for (int k = 0; k < 3; ++k) g.V[3 * i + k] = V[k];
   };
 
   // Tiles rather than rows: neighbouring rows on one core reuse the texels the previous row
