@@ -52,7 +52,8 @@ class Raycaster {
   // size (a 1080p G-buffer is 270 MB: fresh pages cost the kernel page faults and zeroing).
   void trace(const View& view, int width, int height, float jx, float jy, GBuffer& out) const;
 
-  // Memory held by the textures' mip chains (16-bit channels, only those some slot reads).
+  // Memory held by the textures' mip chains (8 or 16 bits per channel, only the channels some
+  // slot reads). The Raycaster keeps its own copies: the Asset may be destroyed after construction.
   std::size_t textureBytes() const;
 
  private:
