@@ -148,77 +148,91 @@ void Raycaster::trace(const View& view, int width, int height, float jx, float j
   const auto& u = view.up;
   const float inf = std::numeric_limits<float>::infinity();
 
-  auto tracePixel = [&](RayContext& rc, int x, int y) {
-    const double s = 2.0 * (x + jx) / width - 1.0, t = 1.0 - 2.0 * (y + jy) / height;
-    double o[3], d[3];
-    for (int k = 0; k < 3; ++k) {
-      if (view.orthographic) {
-        o[k] = view.position[k] + s * ext * aspect * r[k] + t * ext * u[k];
-        d[k] = f[k];
-      } else {
-        o[k] = view.position[k];
-        d[k] = f[k] + s * ext * aspect * r[k] + t * ext * u[k];
-      }
-    }
-    const double len = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-    for (double& c : d) c /= len;
-    // Distances along the ray to the near and far planes, which are perpendicular to forward.
-    const double cosF = d[0] * f[0] + d[1] * f[1] + d[2] * f[2];
-    RTCRayHit rh;
-    rh.ray.org_x = static_cast<float>(o[0]);
-    rh.ray.org_y = static_cast<float>(o[1]);
-    rh.ray.org_z = static_cast<float>(o[2]);
-    rh.ray.dir_x = static_cast<float>(d[0]);
-    rh.ray.dir_y = static_cast<float>(d[1]);
-    rh.ray.dir_z = static_cast<float>(d[2]);
-    rh.ray.tnear = static_cast<float>(std::max(0.0, view.znear / cosF));
-    rh.ray.tfar = view.zfar > 0.0 ? static_cast<float>(view.zfar / cosF) : inf;
-    rh.ray.time = 0.0f;
-    rh.ray.mask = 0xFFFFFFFFu;
-    rh.ray.id = 0;
-    rh.ray.flags = 0;
-    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-    rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
-    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-    rtcIntersect1(st.scene, &rc.embree, &rh);
-
-    const std::size_t i = static_cast<std::size_t>(y) * width + x;
-    float V[3] = {static_cast<float>(-d[0]), static_cast<float>(-d[1]), static_cast<float>(-d[2])};
-    if (rh.hit.geomID != RTC_INVALID_GEOMETRY_ID) {
-      Hit h;
-      h.prim = static_cast<int>(rh.hit.geomID);
-      h.tri = rh.hit.primID;
-      h.u = rh.hit.u;
-      h.v = rh.hit.v;
-      h.dir = {rh.ray.dir_x, rh.ray.dir_y, rh.ray.dir_z};
-      h.coneWidth = rc.orthographic ? rc.coneWidth : rh.ray.tfar * rc.coneSpread;
-      const SurfacePoint sp = st.surfaces->evaluate(h);
-      if (!view.orthographic) {
-        const double e[3] = {view.position[0] - sp.P[0], view.position[1] - sp.P[1], view.position[2] - sp.P[2]};
-        const double el = std::sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]);
-        if (el > 0.0 && std::isfinite(el))
-          for (int k = 0; k < 3; ++k) V[k] = static_cast<float>(e[k] / el);
-      }
+  // One packet of 4x4 neighbouring pixels: coherent primary rays traverse the BVH together.
+  auto traceBlock = [&](RayContext& rc, int x0, int y0) {
+    alignas(64) RTCRayHit16 rh;
+    alignas(64) int valid[16];
+    float dirs[16][3];
+    for (int lane = 0; lane < 16; ++lane) {
+      const int x = x0 + lane % 4, y = y0 + lane / 4;
+      valid[lane] = x < width && y < height ? -1 : 0;
+      const double s = 2.0 * (x + jx) / width - 1.0, t = 1.0 - 2.0 * (y + jy) / height;
+      double o[3], d[3];
       for (int k = 0; k < 3; ++k) {
-        g.P[3 * i + k] = sp.P[k];
-        g.N[3 * i + k] = sp.N[k];
-        g.T[3 * i + k] = sp.T[k];
-        g.baseColor[3 * i + k] = sp.baseColor[k];
-        g.emissive[3 * i + k] = sp.emissive[k];
-        g.sheenColor[3 * i + k] = sp.sheenColor[k];
-        g.clearcoatN[3 * i + k] = sp.clearcoatN[k];
+        if (view.orthographic) {
+          o[k] = view.position[k] + s * ext * aspect * r[k] + t * ext * u[k];
+          d[k] = f[k];
+        } else {
+          o[k] = view.position[k];
+          d[k] = f[k] + s * ext * aspect * r[k] + t * ext * u[k];
+        }
       }
-      g.mask[i] = 1.0f;
-      g.metallic[i] = sp.metallic;
-      g.roughness[i] = sp.roughness;
-      g.sheenRoughness[i] = sp.sheenRoughness;
-      g.clearcoat[i] = sp.clearcoat;
-      g.clearcoatRoughness[i] = sp.clearcoatRoughness;
-      g.anisotropyStrength[i] = sp.anisotropyStrength;
-      g.anisotropyRotation[i] = sp.anisotropyRotation;
-      g.occlusion[i] = sp.occlusion;
+      const double len = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+      for (int k = 0; k < 3; ++k) {
+        d[k] /= len;
+        dirs[lane][k] = static_cast<float>(d[k]);
+      }
+      // Distances along the ray to the near and far planes, which are perpendicular to forward.
+      const double cosF = d[0] * f[0] + d[1] * f[1] + d[2] * f[2];
+      rh.ray.org_x[lane] = static_cast<float>(o[0]);
+      rh.ray.org_y[lane] = static_cast<float>(o[1]);
+      rh.ray.org_z[lane] = static_cast<float>(o[2]);
+      rh.ray.dir_x[lane] = dirs[lane][0];
+      rh.ray.dir_y[lane] = dirs[lane][1];
+      rh.ray.dir_z[lane] = dirs[lane][2];
+      rh.ray.tnear[lane] = static_cast<float>(std::max(0.0, view.znear / cosF));
+      rh.ray.tfar[lane] = view.zfar > 0.0 ? static_cast<float>(view.zfar / cosF) : inf;
+      rh.ray.time[lane] = 0.0f;
+      rh.ray.mask[lane] = 0xFFFFFFFFu;
+      rh.ray.id[lane] = static_cast<unsigned>(lane);
+      rh.ray.flags[lane] = 0;
+      rh.hit.geomID[lane] = RTC_INVALID_GEOMETRY_ID;
+      rh.hit.primID[lane] = RTC_INVALID_GEOMETRY_ID;
+      rh.hit.instID[0][lane] = RTC_INVALID_GEOMETRY_ID;
     }
-    for (int k = 0; k < 3; ++k) g.V[3 * i + k] = V[k];
+    rtcIntersect16(valid, st.scene, &rc.embree, &rh);
+
+    for (int lane = 0; lane < 16; ++lane) {
+      if (!valid[lane]) continue;
+      const int x = x0 + lane % 4, y = y0 + lane / 4;
+      const std::size_t i = static_cast<std::size_t>(y) * width + x;
+      float V[3] = {-dirs[lane][0], -dirs[lane][1], -dirs[lane][2]};
+      if (rh.hit.geomID[lane] != RTC_INVALID_GEOMETRY_ID) {
+        Hit h;
+        h.prim = static_cast<int>(rh.hit.geomID[lane]);
+        h.tri = rh.hit.primID[lane];
+        h.u = rh.hit.u[lane];
+        h.v = rh.hit.v[lane];
+        h.dir = {dirs[lane][0], dirs[lane][1], dirs[lane][2]};
+        h.coneWidth = rc.orthographic ? rc.coneWidth : rh.ray.tfar[lane] * rc.coneSpread;
+        const SurfacePoint sp = st.surfaces->evaluate(h);
+        if (!view.orthographic) {
+          const double e[3] = {view.position[0] - sp.P[0], view.position[1] - sp.P[1], view.position[2] - sp.P[2]};
+          const double el = std::sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]);
+          if (el > 0.0 && std::isfinite(el))
+            for (int k = 0; k < 3; ++k) V[k] = static_cast<float>(e[k] / el);
+        }
+        for (int k = 0; k < 3; ++k) {
+          g.P[3 * i + k] = sp.P[k];
+          g.N[3 * i + k] = sp.N[k];
+          g.T[3 * i + k] = sp.T[k];
+          g.baseColor[3 * i + k] = sp.baseColor[k];
+          g.emissive[3 * i + k] = sp.emissive[k];
+          g.sheenColor[3 * i + k] = sp.sheenColor[k];
+          g.clearcoatN[3 * i + k] = sp.clearcoatN[k];
+        }
+        g.mask[i] = 1.0f;
+        g.metallic[i] = sp.metallic;
+        g.roughness[i] = sp.roughness;
+        g.sheenRoughness[i] = sp.sheenRoughness;
+        g.clearcoat[i] = sp.clearcoat;
+        g.clearcoatRoughness[i] = sp.clearcoatRoughness;
+        g.anisotropyStrength[i] = sp.anisotropyStrength;
+        g.anisotropyRotation[i] = sp.anisotropyRotation;
+        g.occlusion[i] = sp.occlusion;
+      }
+      for (int k = 0; k < 3; ++k) g.V[3 * i + k] = V[k];
+    }
   };
 
   // Tiles rather than rows: neighbouring rows on one core reuse the texels the previous row
@@ -229,14 +243,15 @@ void Raycaster::trace(const View& view, int width, int height, float jx, float j
   auto worker = [&] {
     RayContext rc;
     rtcInitIntersectContext(&rc.embree);
+    rc.embree.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
     rc.surfaces = st.surfaces.get();
     rc.orthographic = view.orthographic;
     rc.coneSpread = static_cast<float>(2.0 * view.tanHalfFovY / height);
     rc.coneWidth = static_cast<float>(2.0 * view.halfHeight / height);
     for (int tile; (tile = nextTile.fetch_add(1)) < tiles;) {
       const int x0 = (tile % tilesX) * kTileW, y0 = (tile / tilesX) * kTileH;
-      for (int y = y0; y < std::min(height, y0 + kTileH); ++y)
-        for (int x = x0; x < std::min(width, x0 + kTileW); ++x) tracePixel(rc, x, y);
+      for (int y = y0; y < std::min(height, y0 + kTileH); y += 4)
+        for (int x = x0; x < std::min(width, x0 + kTileW); x += 4) traceBlock(rc, x, y);
     }
   };
   parallel(worker);
