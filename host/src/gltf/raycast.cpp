@@ -1,6 +1,6 @@
 // Primary rays through a glTF asset with Embree 3: one triangle geometry per primitive, an
-// intersection filter for back-face culling and alpha cut-outs, rows of pixels traced on
-// several threads, hits decoded into the G-buffer by Surfaces.
+// intersection filter for back-face culling and alpha cut-outs, tiles of 4x4 ray packets traced
+// on several threads, hits decoded into the G-buffer by Surfaces.
 #include <embree3/rtcore.h>
 
 #include <algorithm>
