@@ -11,6 +11,7 @@
 
 #include "brdfcl/error.hpp"
 #include "gltf_support.hpp"
+#include "process.hpp"
 
 namespace brdfcl::test {
 namespace {
@@ -125,6 +126,67 @@ TEST(GltfCamera, OrthographicPointLandsOnItsPixel) {
   expectOnlyPixel(g, px, py);
   for (std::size_t i = 0; i < g.pixelCount(); ++i)
     for (int k = 0; k < 3; ++k) ASSERT_NEAR(g.V[3 * i + k], -f[k], 1e-6);
+}
+
+TEST(GltfRaycast, TracingIntoAnExistingGBufferGivesTheSameChannels) {
+  Camera cam = frontOrtho(1.0, 5.0);
+  const Asset as = markerAsset(cam, {0.2, 0.1, 0}, {0, 0, -1}, 0.5);
+  Raycaster rc(as);
+  const View v = chooseView(as, "", 8, 8);
+  const GBuffer fresh = rc.trace(v, 8, 8, 0.3f, 0.6f);
+  GBuffer reused = rc.trace(v, 5, 3);  // other size, and stale values everywhere
+  for (int k = 0; k < 2; ++k) {
+    rc.trace(v, 8, 8, 0.3f, 0.6f, reused);
+    EXPECT_EQ(reused.width, 8);
+    EXPECT_EQ(reused.height, 8);
+    EXPECT_EQ(reused.P, fresh.P);
+    EXPECT_EQ(reused.N, fresh.N);
+    EXPECT_EQ(reused.mask, fresh.mask);
+    EXPECT_EQ(reused.V, fresh.V);
+    EXPECT_EQ(reused.occlusion, fresh.occlusion);
+  }
+}
+
+TEST(GltfRaycast, TracedGBufferRoundTripsThroughTheExrFormat) {
+  // Hits and misses through writeGBuffer/readGBuffer, which refuse NaNs and partial vectors.
+  // (occlusion and V are not in io/gbuffer.cpp on this branch, so they are not compared.)
+  Material m;
+  m.doubleSided = true;
+  m.sheenColorFactor = {0.5f, 0.4f, 0.3f};
+  m.clearcoatFactor = 0.7f;
+  m.anisotropyStrength = 0.4f;
+  m.emissiveFactor = {0.1f, 0.2f, 0.3f};
+  Asset as;
+  as.materials.push_back(m);
+  as.primitives.push_back(quad(-0.5, -0.5, 0.5, 0.5, 0, 0));
+  Camera cam;
+  cam.index = 0;
+  cam.world = translation(0.1, 0.2, 3);
+  as.cameras.push_back(cam);
+  Raycaster rc(as);
+  const GBuffer g = rc.trace(chooseView(as, "", 24, 16), 24, 16);
+  expectValid(g);
+  ScratchDir dir("gltf-gbuffer");
+  writeGBuffer(dir.path("g.exr"), g);
+  const GBuffer r = readGBuffer(dir.path("g.exr"));
+  EXPECT_EQ(r.mask, g.mask);
+  EXPECT_EQ(r.N, g.N);
+  EXPECT_EQ(r.T, g.T);
+  EXPECT_EQ(r.sheenColor, g.sheenColor);
+  EXPECT_EQ(r.clearcoatN, g.clearcoatN);
+  EXPECT_EQ(r.emissive, g.emissive);
+  EXPECT_EQ(r.anisotropyRotation, g.anisotropyRotation);
+}
+
+TEST(GltfCamera, JitterMovesTheRayWithinThePixel) {
+  // Orthographic 8x8 over [-1, 1]^2: pixel (2, 5) spans x in [-0.5, -0.25], y in [-0.5, -0.25].
+  const double jx = 0.1, jy = 0.85;
+  const D3 q{-1 + 2 * (2 + jx) / 8, 1 - 2 * (5 + jy) / 8, 0};
+  const Asset as = markerAsset(frontOrtho(1.0, 5.0), q, {0, 0, -1}, 0.004);
+  Raycaster rc(as);
+  const View v = chooseView(as, "", 8, 8);
+  expectOnlyPixel(rc.trace(v, 8, 8, float(jx), float(jy)), 2, 5);
+  for (float m : rc.trace(v, 8, 8).mask) EXPECT_EQ(m, 0.0f);  // the centre ray misses it
 }
 
 TEST(GltfCamera, ZfarEndsTheRays) {
@@ -384,27 +446,39 @@ TEST(GltfRaycast, DISABLED_BenchmarkSevenLargeTextures) {
   auto t0 = std::chrono::steady_clock::now();
   Raycaster rc(as);
   const double build = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  // Looking straight down from 1.2 above, the grid fills the frame: every pixel shades.
-  Asset viewAsset;
-  Camera cam;
-  cam.index = 0;
-  cam.yfov = 2 * std::atan(0.42);
-  cam.world = mul(translation(0, 1.2, 0), rotationX(-M_PI / 2));
-  viewAsset.cameras.push_back(cam);
-  const View v = chooseView(viewAsset, "0", 1920, 1080);
-  double best = 1e9, bestCpu = 1e9, hits = 0;
-  for (int k = 0; k < 3; ++k) {
-    t0 = std::chrono::steady_clock::now();
-    const std::clock_t c0 = std::clock();
-    const GBuffer g = rc.trace(v, 1920, 1080);
-    best = std::min(best, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
-    bestCpu = std::min(bestCpu, double(std::clock() - c0) / CLOCKS_PER_SEC);  // all threads: load-independent
-    hits = 0;
-    for (float m : g.mask) hits += m;
-    hits /= g.pixelCount();
+  std::cout << "[          ] build " << build << " s, texture memory " << rc.textureBytes() / 1048576.0 << " MiB\n";
+  // Looking straight down: from 1.2 above the grid fills the frame, from 2.8 it covers 40 %.
+  for (double height : {1.2, 2.8}) {
+    Asset viewAsset;
+    Camera cam;
+    cam.index = 0;
+    cam.yfov = 2 * std::atan(0.42);
+    cam.world = mul(translation(0, height, 0), rotationX(-M_PI / 2));
+    viewAsset.cameras.push_back(cam);
+    const View v = chooseView(viewAsset, "0", 1920, 1080);
+    double best = 1e9, bestCpu = 1e9, bestReused = 1e9, bestReusedCpu = 1e9, hits = 0;
+    GBuffer reused;
+    for (int k = 0; k < 3; ++k) {
+      t0 = std::chrono::steady_clock::now();
+      std::clock_t c0 = std::clock();
+      const GBuffer g = rc.trace(v, 1920, 1080);
+      best = std::min(best, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+      bestCpu = std::min(bestCpu, double(std::clock() - c0) / CLOCKS_PER_SEC);  // all threads: load-independent
+      hits = 0;
+      for (float m : g.mask) hits += m;
+      hits /= g.pixelCount();
+      // Into a reused G-buffer: no fresh pages to fault in.
+      rc.trace(v, 1920, 1080, 0.5f, 0.5f, reused);
+      t0 = std::chrono::steady_clock::now();
+      c0 = std::clock();
+      rc.trace(v, 1920, 1080, 0.5f, 0.5f, reused);
+      bestReused = std::min(bestReused, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+      bestReusedCpu = std::min(bestReusedCpu, double(std::clock() - c0) / CLOCKS_PER_SEC);
+    }
+    std::cout << "[          ] 1920x1080, " << 100 * hits << " % of the pixels hit, best of 3: " << best << " s wall, "
+              << bestCpu << " s CPU; into a reused G-buffer " << bestReused << " s wall, " << bestReusedCpu
+              << " s CPU\n";
   }
-  std::cout << "[          ] build " << build << " s, texture memory " << rc.textureBytes() / 1048576.0
-            << " MiB, trace 1920x1080 best of 3: " << best << " s wall, " << bestCpu << " s CPU, " << 100 * hits << " % of the pixels hit\n";
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <memory>
 
 #include "gltf_support.hpp"
 
@@ -453,6 +454,22 @@ TEST(GltfTextures, OddSizedImageMipsDownToItsMean) {
     for (int x = 0; x < 3; ++x) mean += unit(x, y, 1) / 15.0;
   const GBuffer g = render(a);
   for (float r : g.roughness) EXPECT_NEAR(r, mean, 0.5 / 255.0 + 1e-6);
+}
+
+TEST(GltfTextures, RaycasterOutlivesItsAsset) {
+  Material m;
+  m.baseColorTexture = ref();
+  m.baseColorFactor = {0.5f, 1.0f, 1.0f, 1.0f};
+  std::unique_ptr<Raycaster> rc;
+  View v;
+  {
+    const Asset a = texturedQuad(m);
+    rc = std::make_unique<Raycaster>(a);
+    v = chooseView(a, "", kN, kN);
+  }
+  const GBuffer g = rc->trace(v, kN, kN);
+  expectValid(g);
+  EXPECT_NEAR(g.baseColor[3 * 5], 0.5 * srgbDecode(unit(1, 1, 0)), kTol);
 }
 
 TEST(GltfTextures, NonexistentTextureIsAnError) {

@@ -48,8 +48,12 @@ class Raycaster {
   // pixel centre. The G-buffer holds every channel of docs/gbuffer.md, V included; mask 0 where
   // the ray leaves the scene.
   GBuffer trace(const View& view, int width, int height, float jx = 0.5f, float jy = 0.5f) const;
+  // The same into `out`, reusing its channels' memory when it already holds a G-buffer of this
+  // size (a 1080p G-buffer is 270 MB: fresh pages cost the kernel page faults and zeroing).
+  void trace(const View& view, int width, int height, float jx, float jy, GBuffer& out) const;
 
-  // Memory held by the textures' mip chains (16-bit channels, only those some slot reads).
+  // Memory held by the textures' mip chains (8 or 16 bits per channel, only the channels some
+  // slot reads). The Raycaster keeps its own copies: the Asset may be destroyed after construction.
   std::size_t textureBytes() const;
 
  private:
