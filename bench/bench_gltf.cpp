@@ -88,7 +88,7 @@ void BM_GltfFirstRender(benchmark::State& state) {
 }
 
 BENCHMARK(BM_GltfGbuffer)->UseRealTime()->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_GltfRender)->Arg(1)->Arg(4)->ArgName("spp")->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_GltfRender)->Arg(1)->Arg(4)->ArgName("spp")->Iterations(4)->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_GltfFirstRender)->Iterations(3)->UseRealTime()->Unit(benchmark::kMillisecond);
 
 }  // namespace
