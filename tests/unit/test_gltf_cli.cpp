@@ -15,6 +15,7 @@
 #include "brdfcl/gbuffer.hpp"
 #include "brdfcl/gltf.hpp"
 #include "brdfcl/image.hpp"
+#include "gltf_builder.hpp"
 #include "process.hpp"
 #include "support.hpp"
 
@@ -110,6 +111,38 @@ TEST(GltfConsistency, RenderAtOneSampleEqualsGbufferThenShadePerspective) {
   ScratchDir dir("gltf-consistency");
   gltf::writeDemoAsset(dir.path("demo.glb"));
   expectRenderEqualsGbufferThenShade(dir.path("demo.glb"), {}, dir);
+}
+
+// An orthographic camera has one view direction for every pixel; the G-buffer's V channel carries
+// it, so shade reproduces the render though the scene file's camera cannot express it.
+TEST(GltfConsistency, RenderAtOneSampleEqualsGbufferThenShadeOrthographic) {
+  ScratchDir dir("gltf-consistency-ortho");
+  GltfBuilder b;
+  b.useExtension("KHR_materials_sheen");
+  b.useExtension("KHR_materials_clearcoat");
+  const int material = b.addMaterial(
+      {{"pbrMetallicRoughness", {{"baseColorFactor", {0.6, 0.3, 0.2, 1}}, {"metallicFactor", 0.2}, {"roughnessFactor", 0.5}}},
+       {"extensions",
+        {{"KHR_materials_sheen", {{"sheenColorFactor", {0.9, 0.8, 0.7}}, {"sheenRoughnessFactor", 0.4}}},
+         {"KHR_materials_clearcoat", {{"clearcoatFactor", 0.7}, {"clearcoatRoughnessFactor", 0.2}}}}}});
+  // A 2 x 2 quad facing +Z, tilted 30 degrees about X by its node.
+  const int quad = b.addTriangles({-1, -1, 0, 1, -1, 0, 1, 1, 0, -1, 1, 0}, {0, 1, 2, 0, 2, 3}, material,
+                                  {0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1});
+  const int mesh = b.addMeshNode(quad, {{"rotation", {std::sin(0.2618), 0, 0, std::cos(0.2618)}}});
+  // The camera sits on a child node (translation) of a parent turned 20 degrees about Y.
+  const int camera = b.addCamera({{"type", "orthographic"},
+                                  {"orthographic", {{"xmag", 1.6}, {"ymag", 1.2}, {"znear", 0.1}, {"zfar", 20}}}});
+  const int eye = b.addNode({{"camera", camera}, {"translation", {0, 0, 6}}});
+  const int rig = b.addNode({{"children", {eye}}, {"rotation", {0, std::sin(0.1745), 0, std::cos(0.1745)}}});
+  const int spot = b.addLight({{"type", "spot"}, {"intensity", 40}, {"color", {1, 0.9, 0.8}},
+                               {"spot", {{"innerConeAngle", 0.2}, {"outerConeAngle", 0.6}}}});
+  const int point = b.addLight({{"type", "point"}, {"intensity", 15}, {"range", 30}});
+  const int spotNode = b.addNode({{"translation", {0, 0, 4}}, {"extensions", {{"KHR_lights_punctual", {{"light", spot}}}}}});
+  const int pointNode = b.addNode({{"translation", {2, 2, 2}}, {"extensions", {{"KHR_lights_punctual", {{"light", point}}}}}});
+  b.addScene({mesh, rig, spotNode, pointNode});
+  const std::string path = b.write(dir.dir(), "ortho.gltf");
+  ASSERT_TRUE(gltf::load(path).cameras.at(0).orthographic);
+  expectRenderEqualsGbufferThenShade(path, {}, dir);
 }
 
 TEST(GltfCli, DemoRendersThroughTheGltfPath) {
