@@ -12,6 +12,7 @@
 #include "brdfcl/error.hpp"
 #include "gltf_support.hpp"
 #include "process.hpp"
+#include "support.hpp"
 
 namespace brdfcl::test {
 namespace {
@@ -219,16 +220,18 @@ TEST(GltfCamera, CameraArgumentSelectsByGltfIndex) {
     EXPECT_NE(std::string(e.what()).find("2, 5"), std::string::npos) << e.what();
     EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos);
   }
-  EXPECT_THROW(chooseView(as, "front", 10, 10), Error);
+  EXPECT_CONTAINS(errorOf([&] { chooseView(as, "front", 10, 10); }),
+                  "--camera 'front': expected auto or a glTF camera index (a number such as 0)");
   EXPECT_THROW(chooseView(as, "-1", 10, 10), Error);
   as.cameras[0].ymag = 0.0;
-  EXPECT_THROW(chooseView(as, "2", 10, 10), Error);
+  EXPECT_CONTAINS(errorOf([&] { chooseView(as, "2", 10, 10); }), "cameras[2]: orthographic ymag 0.000000 must be a non-zero number");
   as.cameras[1].orthographic = false;
   as.cameras[1].yfov = 3.5;
-  EXPECT_THROW(chooseView(as, "5", 10, 10), Error);
+  EXPECT_CONTAINS(errorOf([&] { chooseView(as, "5", 10, 10); }), "cameras[5]: perspective yfov 3.500000 must lie in (0, pi) radians");
   as.cameras.clear();
   EXPECT_EQ(chooseView(as, "", 10, 10).description, "auto");
-  EXPECT_THROW(chooseView(as, "0", 10, 10), Error);
+  EXPECT_CONTAINS(errorOf([&] { chooseView(as, "0", 10, 10); }),
+                  "--camera 0: no node of the scene uses cameras[0]; the scene has no camera nodes, use auto");
 }
 
 TEST(GltfCamera, DefaultSizeFollowsTheCameraAspect) {
