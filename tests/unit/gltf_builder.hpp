@@ -14,12 +14,9 @@
 #include <string>
 #include <vector>
 
-#ifndef BRDFCL_TEST_STBIW_DEFINED
-#define BRDFCL_TEST_STBIW_DEFINED
-#define STB_IMAGE_WRITE_STATIC
-#define STB_IMAGE_WRITE_IMPLEMENTATION
+// The encoders come from Debian's compiled libstb (linked through brdfcl_core), not from a copy
+// compiled into the tests: its JPEG writer shifts negative ints, which UBSan would report here.
 #include <stb/stb_image_write.h>
-#endif
 
 namespace brdfcl::test {
 
