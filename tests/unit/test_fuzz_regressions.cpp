@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include "brdfcl/gltf.hpp"
+
 #include <ImfChannelList.h>
 #include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
@@ -176,6 +178,19 @@ TEST_F(ExrBands, TilesKeepEveryPixel) {
   int rw = 0, rh = 0;
   EXPECT_EQ(brdfcl::readExrRgb(p, rw, rh), rgb);
   EXPECT_EQ(rh, h);
+}
+
+// fuzz_gltf: a PNG whose first IDAT chunk is empty made stb_image memcpy zero bytes to NULL
+// (undefined; UBSan aborted). Under make test-asan this test aborts if images.cpp is built with
+// UBSan again; in any build the file loads or is refused in one line.
+TEST(FuzzRegressions, GltfPngWithAnEmptyFirstIdat) {
+  const std::string p = corpus("gltf", "png_empty_idat_null_memcpy.gltf");
+  try {
+    const brdfcl::gltf::Asset a = brdfcl::gltf::load(p);
+    EXPECT_FALSE(a.images.empty());
+  } catch (const brdfcl::Error& e) {
+    EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace
