@@ -16,6 +16,7 @@
 #include "brdfcl/gltf.hpp"
 #include "gltf/accessors.hpp"
 #include "gltf/document.hpp"
+#include "gltf/draco.hpp"
 #include "gltf/images.hpp"
 #include "gltf/meshopt.hpp"
 #include "gltf/tangents.hpp"
@@ -335,10 +336,15 @@ Asset loadFromMemory(const std::string& bytes, const std::string& name, const st
   const std::vector<bool> fallbacks = detail::meshoptFallbacks(doc, ctx.source);
   checkBuffers(doc, ctx, glb, binSize, fallbacks);
   registerImages(doc, ctx);
-  // tinygltf needs bytes for every buffer: fallback buffers get one, in a rewritten document.
+  // tinygltf needs bytes for every buffer and a bufferView for every indices accessor: fallback
+  // buffers get a byte and Draco primitives lose "indices", in a rewritten document.
   std::string rewritten;
-  if (std::find(fallbacks.begin(), fallbacks.end(), true) != fallbacks.end()) {
-    const std::string text = detail::withoutFallbackBuffers(doc, fallbacks).dump();
+  const bool hasFallbacks = std::find(fallbacks.begin(), fallbacks.end(), true) != fallbacks.end();
+  const bool hasDraco = detail::hasDracoPrimitives(doc);
+  if (hasFallbacks || hasDraco) {
+    json forTinygltf = hasFallbacks ? detail::withoutFallbackBuffers(doc, fallbacks) : doc;
+    if (hasDraco) detail::withoutDracoIndices(forTinygltf);
+    const std::string text = forTinygltf.dump();
     rewritten = glb ? withJsonChunk(bytes, text) : text;
   }
   const std::string& input = rewritten.empty() ? bytes : rewritten;
@@ -354,6 +360,7 @@ Asset loadFromMemory(const std::string& bytes, const std::string& name, const st
   if (!ctx.error.empty()) throw Error(ctx.error);
   if (!ok) throw Error(ctx.source + ": " + oneLine(err) + "; the file is not valid glTF 2.0: re-export it");
   detail::decodeMeshopt(doc, model, fallbacks, ctx.source, options);
+  detail::decodeDraco(doc, model, ctx.source, options);  // after meshopt: its view may be one of those
 
   asset.samplers = document.samplers();
   asset.images = std::move(ctx.images);
