@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <draco/compression/encode.h>
 #include <draco/mesh/triangle_soup_mesh_builder.h>
+#include <dlfcn.h>
 #include <meshoptimizer.h>
 
 #include <algorithm>
@@ -20,6 +21,12 @@
 #include "gltf_builder.hpp"
 #include "process.hpp"
 #include "support.hpp"
+
+namespace tinygltf {
+// Declared here (tiny_gltf.h needs stb's include path): a free function of Debian's libtinygltf.
+bool DecodeDataURI(std::vector<unsigned char>* out, std::string& mime, const std::string& in, std::size_t reqBytes,
+                   bool checkSize);
+}  // namespace tinygltf
 
 namespace gltf = brdfcl::gltf;
 using brdfcl::test::errorOf;
@@ -464,6 +471,15 @@ void expectSameTriangles(const gltf::Primitive& p, const gltf::Primitive& ref, f
 }
 
 class GltfDraco : public GltfMeshopt {};
+
+// libdraco.a carries its own copy of tinygltf (another version): linked before libtinygltf.so,
+// its objects would replace Debian's tinygltf in the loader and corrupt the heap.
+TEST_F(GltfDraco, TinygltfComesFromDebiansLibrary) {
+  Dl_info info{};
+  ASSERT_NE(dladdr(reinterpret_cast<void*>(&tinygltf::DecodeDataURI), &info), 0);
+  ASSERT_NE(info.dli_fname, nullptr);
+  EXPECT_NE(std::string(info.dli_fname).find("libtinygltf"), std::string::npos) << info.dli_fname;
+}
 
 TEST_F(GltfDraco, LosslessMeshLoadsAsTheUncompressedMesh) {
   const Grid g = grid();
