@@ -360,6 +360,13 @@ TEST_F(GltfMeshopt, MalformedExtensionsAreOneLineErrors) {
     EXPECT_EQ(loadError(b), p + ": bufferViews[1]: buffers[1] is an EXT_meshopt_compression fallback without data, but this view is not compressed; re-export the file");
   }
   {
+    // tinygltf would read an image from the fallback buffer's (absent) bytes.
+    GltfBuilder b = compressed(g, Fallback::Dataless);
+    b.doc["images"] = json::array({{{"bufferView", 2}, {"mimeType", "image/png"}}});
+    b.doc["textures"] = json::array({{{"source", 0}}});
+    EXPECT_EQ(loadError(b, Storage::Glb), path(Storage::Glb) + ": images[0].bufferView: bufferViews[2] lies in an EXT_meshopt_compression fallback buffer, which has no data; brdfcl reads images from uncompressed views only: re-export the file");
+  }
+  {
     GltfBuilder b = compressed(g, Fallback::Dataless);
     b.extraBuffers[0]["extensions"]["EXT_meshopt_compression"]["fallback"] = "yes";
     EXPECT_EQ(loadError(b), p + ": buffers[1].extensions.EXT_meshopt_compression.fallback: expected true or false, got string \"yes\"");

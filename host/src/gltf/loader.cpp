@@ -341,6 +341,7 @@ Asset loadFromMemory(const std::string& bytes, const std::string& name, const st
   std::string rewritten;
   const bool hasFallbacks = std::find(fallbacks.begin(), fallbacks.end(), true) != fallbacks.end();
   const bool hasDraco = detail::hasDracoPrimitives(doc);
+  if (hasFallbacks) detail::checkFallbackUse(doc, fallbacks, ctx.source);
   if (hasFallbacks || hasDraco) {
     json forTinygltf = hasFallbacks ? detail::withoutFallbackBuffers(doc, fallbacks) : doc;
     if (hasDraco) detail::withoutDracoIndices(forTinygltf);

@@ -96,6 +96,30 @@ json withoutFallbackBuffers(const json& doc, const std::vector<bool>& fallbacks)
   return out;
 }
 
+void checkFallbackUse(const json& doc, const std::vector<bool>& fallbacks, const std::string& source) {
+  const json* views = member(doc, "bufferViews");
+  if (!views || !views->is_array()) return;
+  // checkBuffers (loader.cpp) has made sure every view names an existing buffer.
+  auto inFallback = [&](std::size_t v) {
+    const json* b = v < views->size() ? member((*views)[v], "buffer") : nullptr;
+    return b && b->is_number_unsigned() && b->get<std::uint64_t>() < fallbacks.size() &&
+           fallbacks[std::size_t(b->get<std::uint64_t>())];
+  };
+  for (std::size_t i = 0; i < views->size(); ++i)
+    if (inFallback(i) && !extensionOf((*views)[i]))
+      fail(source, at("bufferViews", i), "buffers[" + member((*views)[i], "buffer")->dump() + "] is an " + kName +
+                                             " fallback without data, but this view is not compressed; re-export the file");
+  const json* images = member(doc, "images");
+  if (!images || !images->is_array()) return;
+  for (std::size_t i = 0; i < images->size(); ++i) {
+    const json* v = member((*images)[i], "bufferView");
+    if (v && v->is_number_unsigned() && inFallback(std::size_t(v->get<std::uint64_t>())))
+      fail(source, at("images", i) + ".bufferView", "bufferViews[" + v->dump() + "] lies in an " + kName +
+                                                        " fallback buffer, which has no data; brdfcl reads images from "
+                                                        "uncompressed views only: re-export the file");
+  }
+}
+
 void decodeMeshopt(const json& doc, tinygltf::Model& model, const std::vector<bool>& fallbacks, const std::string& source,
                    const LoadOptions& options) {
   const json* views = member(doc, "bufferViews");
@@ -107,12 +131,7 @@ void decodeMeshopt(const json& doc, tinygltf::Model& model, const std::vector<bo
     const std::string self = at("bufferViews", i);
     const json* ext = extensionOf(view);
     tinygltf::BufferView& bv = model.bufferViews[i];
-    if (!ext) {
-      if (bv.buffer >= 0 && isFallback(std::uint64_t(bv.buffer)))
-        fail(source, self, "buffers[" + std::to_string(bv.buffer) + "] is an " + kName +
-                               " fallback without data, but this view is not compressed; re-export the file");
-      continue;
-    }
+    if (!ext) continue;
     const std::string path = self + ".extensions." + kName;
     if (!ext->is_object()) fail(source, path, "expected an object, got " + brdfcl::detail::describeJson(*ext));
     const std::uint64_t buffer = unsignedAt(*ext, "buffer", path, source, true);

@@ -22,11 +22,14 @@ std::vector<bool> meshoptFallbacks(const nlohmann::json& doc, const std::string&
 // tinygltf refuses a buffer without data (and, in a .glb, would give it the BIN chunk's bytes).
 nlohmann::json withoutFallbackBuffers(const nlohmann::json& doc, const std::vector<bool>& fallbacks);
 
+// Before tinygltf reads `doc` (buffers and views already checked): a view that is not compressed,
+// or one an image reads, may not lie in a fallback buffer, which has no bytes to read.
+void checkFallbackUse(const nlohmann::json& doc, const std::vector<bool>& fallbacks, const std::string& source);
+
 // Decodes every bufferView with EXT_meshopt_compression: its bytes become a new buffer of
 // count * byteStride bytes, which the view then points at (byteOffset 0). Sizes are checked
-// against the compressed data and options.maxElements before anything is allocated; a view that
-// is not compressed but lies in a fallback buffer is an error. Messages are
-// "<source>: bufferViews[i]...: ...".
+// against the compressed data and options.maxElements before anything is allocated. Messages
+// are "<source>: bufferViews[i]...: ...".
 void decodeMeshopt(const nlohmann::json& doc, tinygltf::Model& model, const std::vector<bool>& fallbacks,
                    const std::string& source, const LoadOptions& options);
 
