@@ -153,6 +153,11 @@ void decodePrimitive(const json& primJson, const json& ext, tinygltf::Model& mod
                            std::to_string(int(att->data_type())) + "); re-export the file");
     const bool integer = att->data_type() != draco::DT_FLOAT32;
     const std::size_t limit = att->buffer() ? std::size_t(att->buffer()->data_size()) : 0;
+    // mapped_index() does not check its argument against the point map.
+    if (!att->is_mapping_identity() && att->indices_map_size() < points)
+      fail(source, prim, std::string(kName) + " data does not decode (attribute " + brdfcl::detail::printable(name, 60) +
+                             " maps " + std::to_string(att->indices_map_size()) + " of " + std::to_string(points) +
+                             " points); re-export the file");
     Out out{ai, std::vector<unsigned char>(points * std::size_t(n) * 4)};
     for (std::size_t pt = 0; pt < points; ++pt) {
       const draco::AttributeValueIndex avi = att->mapped_index(draco::PointIndex(std::uint32_t(pt)));
