@@ -589,6 +589,21 @@ TEST_F(GltfDraco, CorruptOrMismatchedDataIsAOneLineError) {
   }
 }
 
+// A face count of 2^32 - 16 written into a small stream: libdraco refuses it (without the 48 GB
+// its faces would take), and the loader reports that on one line.
+TEST_F(GltfDraco, HugeClaimedCountsAreRefused) {
+  GltfBuilder b = dracoFile(grid(), draco::MESH_SEQUENTIAL_ENCODING, false, true);
+  std::string data = b.bin.substr(0, b.doc["bufferViews"][0]["byteLength"].get<std::size_t>());
+  // Draco 1.5's sequential layout: an 11-byte header ("DRACO", version, type, method, flags), then
+  // the face count as a varint.
+  ASSERT_EQ(data.substr(0, 5), "DRACO");
+  ASSERT_EQ(std::uint8_t(data[11]), 40u);
+  data = data.substr(0, 11) + std::string("\xf0\xff\xff\xff\x0f", 5) + data.substr(12);
+  b.bin = data;
+  b.doc["bufferViews"][0]["byteLength"] = data.size();
+  EXPECT_EQ(loadError(b), path(Storage::DataUris) + ": meshes[0].primitives[0]: KHR_draco_mesh_compression data does not decode (Failed to decode geometry data.); re-export the file");
+}
+
 TEST_F(GltfDraco, MeshesBeyondTheElementLimitAreRefused) {
   const Grid g = grid();
   gltf::LoadOptions o;
