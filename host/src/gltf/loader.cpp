@@ -349,6 +349,7 @@ Asset loadFromMemory(const std::string& bytes, const std::string& name, const st
     rewritten = glb ? withJsonChunk(bytes, text) : text;
   }
   const std::string& input = rewritten.empty() ? bytes : rewritten;
+  if (input.size() > 0xFFFFFFF0u) throw Error(ctx.source + ": the file is larger than 4 GiB; brdfcl reads glTF files up to 4 GiB");
 
   tinygltf::TinyGLTF reader;
   reader.SetImageLoader(&decodeImage, &ctx);
