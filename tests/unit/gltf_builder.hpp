@@ -106,6 +106,15 @@ class GltfBuilder {
   using json = nlohmann::json;
   json doc = {{"asset", {{"version", "2.0"}, {"generator", "brdfcl tests"}}}};
   std::string bin;  // buffers[0]
+  std::vector<json> extraBuffers;  // buffers[1], [2], ... written as they are (e.g. a buffer without data)
+
+  // Raw bytes appended to buffers[0] at a 4-byte boundary, without a view; returns their byteOffset.
+  std::size_t appendBytes(const void* data, std::size_t size) {
+    while (bin.size() % 4) bin += '\0';
+    const std::size_t offset = bin.size();
+    bin.append(static_cast<const char*>(data), size);
+    return offset;
+  }
 
   // Raw bytes appended to buffers[0] at a 4-byte boundary; returns the new bufferView's index.
   int addBufferView(const void* data, std::size_t size, int byteStride = 0) {
@@ -208,6 +217,7 @@ class GltfBuilder {
       if (storage == Storage::ExternalFiles) b["uri"] = binName;
       d["buffers"] = json::array({b});
     }
+    for (const json& e : extraBuffers) d["buffers"].push_back(e);
     if (glbBin) *glbBin = data;
     return d;
   }

@@ -23,7 +23,8 @@ std::string join(const std::string& path, const char* key) { return path.empty()
 // in extensionsRequired refuses the file.
 const char* const kSupported[] = {"KHR_materials_sheen",      "KHR_materials_clearcoat",   "KHR_materials_anisotropy",
                                   "KHR_materials_emissive_strength", "KHR_materials_variants", "KHR_texture_transform",
-                                  "KHR_lights_punctual",      "KHR_mesh_quantization"};
+                                  "KHR_lights_punctual",      "KHR_mesh_quantization",
+                                  "EXT_meshopt_compression", "KHR_draco_mesh_compression"};
 
 bool supported(const std::string& name) {
   return std::any_of(std::begin(kSupported), std::end(kSupported), [&](const char* s) { return name == s; });

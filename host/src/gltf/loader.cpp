@@ -16,7 +16,9 @@
 #include "brdfcl/gltf.hpp"
 #include "gltf/accessors.hpp"
 #include "gltf/document.hpp"
+#include "gltf/draco.hpp"
 #include "gltf/images.hpp"
+#include "gltf/meshopt.hpp"
 #include "gltf/tangents.hpp"
 #include "io/files.hpp"
 #include "io/messages.hpp"
@@ -88,6 +90,16 @@ std::string glbJson(const std::string& b, const std::string& source, std::size_t
     binSize = std::size_t(binLength);
   }
   return b.substr(20, std::size_t(jsonLength));
+}
+
+// The GLB `b` (checked by glbJson) with its JSON chunk replaced by `text`, the BIN chunk kept.
+std::string withJsonChunk(const std::string& b, std::string text) {
+  while (text.size() % 4) text += ' ';
+  const std::string rest = b.substr(20 + std::size_t(le32(b, 12)));
+  auto le = [](std::size_t v) {
+    return std::string{char(v & 255), char((v >> 8) & 255), char((v >> 16) & 255), char((v >> 24) & 255)};
+  };
+  return "glTF" + le(2) + le(20 + text.size() + rest.size()) + le(text.size()) + "JSON" + text + rest;
 }
 
 // tinygltf copies "extras" and "extensions" recursively: a hostile file nesting arrays a million
@@ -163,7 +175,7 @@ std::uint64_t unsignedAt(const Context& ctx, const json& obj, const char* key, c
 
 // Buffers and buffer views as the JSON declares them, checked before tinygltf slices buffers by
 // them (it does not check image buffer views), and the external files named, for messages.
-void checkBuffers(const json& doc, Context& ctx, bool glb, std::size_t binSize) {
+void checkBuffers(const json& doc, Context& ctx, bool glb, std::size_t binSize, const std::vector<bool>& fallbacks) {
   std::vector<std::uint64_t> lengths;
   if (const auto it = doc.find("buffers"); it != doc.end() && it->is_array()) {
     for (std::size_t i = 0; i < it->size(); ++i) {
@@ -173,6 +185,7 @@ void checkBuffers(const json& doc, Context& ctx, bool glb, std::size_t binSize) 
       const std::uint64_t length = unsignedAt(ctx, b, "byteLength", path, true);
       lengths.push_back(length);
       const auto uri = b.find("uri");
+      if (i < fallbacks.size() && fallbacks[i]) continue;  // no bytes: only compressed views decode into it
       if (uri == b.end() || !uri->is_string()) {
         if (!glb || i != 0) ctx.fail(path, "no \"uri\" (only the first buffer of a .glb may omit it); re-export the file");
         if (length > binSize)
@@ -320,19 +333,36 @@ Asset loadFromMemory(const std::string& bytes, const std::string& name, const st
   asset.path = name;
   const detail::Document document(doc, ctx.source);
   document.checkExtensions(asset.warnings);  // before tinygltf meets images it cannot decode (KTX2)
-  checkBuffers(doc, ctx, glb, binSize);
+  const std::vector<bool> fallbacks = detail::meshoptFallbacks(doc, ctx.source);
+  checkBuffers(doc, ctx, glb, binSize, fallbacks);
   registerImages(doc, ctx);
+  // tinygltf needs bytes for every buffer and a bufferView for every indices accessor: fallback
+  // buffers get a byte and Draco primitives lose "indices", in a rewritten document.
+  std::string rewritten;
+  const bool hasFallbacks = std::find(fallbacks.begin(), fallbacks.end(), true) != fallbacks.end();
+  const bool hasDraco = detail::hasDracoPrimitives(doc);
+  if (hasFallbacks) detail::checkFallbackUse(doc, fallbacks, ctx.source);
+  if (hasFallbacks || hasDraco) {
+    json forTinygltf = hasFallbacks ? detail::withoutFallbackBuffers(doc, fallbacks) : doc;
+    if (hasDraco) detail::withoutDracoIndices(forTinygltf);
+    const std::string text = forTinygltf.dump();
+    rewritten = glb ? withJsonChunk(bytes, text) : text;
+  }
+  const std::string& input = rewritten.empty() ? bytes : rewritten;
+  if (input.size() > 0xFFFFFFF0u) throw Error(ctx.source + ": the file is larger than 4 GiB; brdfcl reads glTF files up to 4 GiB");
 
   tinygltf::TinyGLTF reader;
   reader.SetImageLoader(&decodeImage, &ctx);
   reader.SetFsCallbacks(tinygltf::FsCallbacks{&fileExists, &expandPath, &readFile, &writeFile, &ctx});
   tinygltf::Model model;
   std::string err, warn;
-  const auto* data = reinterpret_cast<const unsigned char*>(bytes.data());
-  const bool ok = glb ? reader.LoadBinaryFromMemory(&model, &err, &warn, data, unsigned(bytes.size()), baseDir)
-                      : reader.LoadASCIIFromString(&model, &err, &warn, bytes.data(), unsigned(bytes.size()), baseDir);
+  const auto* data = reinterpret_cast<const unsigned char*>(input.data());
+  const bool ok = glb ? reader.LoadBinaryFromMemory(&model, &err, &warn, data, unsigned(input.size()), baseDir)
+                      : reader.LoadASCIIFromString(&model, &err, &warn, input.data(), unsigned(input.size()), baseDir);
   if (!ctx.error.empty()) throw Error(ctx.error);
   if (!ok) throw Error(ctx.source + ": " + oneLine(err) + "; the file is not valid glTF 2.0: re-export it");
+  detail::decodeMeshopt(doc, model, fallbacks, ctx.source, options);
+  detail::decodeDraco(doc, model, ctx.source, options);  // after meshopt: its view may be one of those
 
   asset.samplers = document.samplers();
   asset.images = std::move(ctx.images);
