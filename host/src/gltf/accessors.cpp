@@ -34,16 +34,6 @@ int componentSize(int type) {
   }
 }
 
-// Vectors only: matrices have column padding rules that no attribute brdfcl reads needs.
-int componentCount(int type) {
-  switch (type) {
-    case TINYGLTF_TYPE_SCALAR: return 1;
-    case TINYGLTF_TYPE_VEC2: return 2;
-    case TINYGLTF_TYPE_VEC3: return 3;
-    case TINYGLTF_TYPE_VEC4: return 4;
-    default: return 0;
-  }
-}
 
 std::string typeName(int components) {
   return components == 1 ? "SCALAR" : "VEC" + std::to_string(components);
@@ -243,6 +233,17 @@ std::vector<std::uint32_t> readIndices(const tinygltf::Model& m, int index, std:
                               " is out of range (the primitive has " + std::to_string(vertexCount) +
                               " vertices); re-export the file");
   return out;
+}
+
+// Vectors only (accessors.hpp): matrices have column padding rules that no attribute brdfcl reads needs.
+int componentCount(int type) {
+  switch (type) {
+    case TINYGLTF_TYPE_SCALAR: return 1;
+    case TINYGLTF_TYPE_VEC2: return 2;
+    case TINYGLTF_TYPE_VEC3: return 3;
+    case TINYGLTF_TYPE_VEC4: return 4;
+    default: return 0;
+  }
 }
 
 }  // namespace brdfcl::gltf::detail

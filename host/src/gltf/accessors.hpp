@@ -34,4 +34,7 @@ Decoded readAccessor(const tinygltf::Model& model, int index, std::initializer_l
 std::vector<std::uint32_t> readIndices(const tinygltf::Model& model, int index, std::size_t vertexCount,
                                        const std::string& source, std::size_t maxCount);
 
+// Components of a glTF accessor type: 1 to 4 for SCALAR to VEC4, 0 for the matrix types.
+int componentCount(int type);
+
 }  // namespace brdfcl::gltf::detail

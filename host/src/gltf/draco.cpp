@@ -12,6 +12,8 @@
 #include <cstring>
 
 #include "brdfcl/error.hpp"
+#include "gltf/accessors.hpp"
+#include "gltf/json_lookup.hpp"
 #include "io/messages.hpp"
 
 namespace brdfcl::gltf::detail {
@@ -20,26 +22,6 @@ namespace {
 using json = nlohmann::json;
 
 constexpr const char* kName = "KHR_draco_mesh_compression";
-
-[[noreturn]] void fail(const std::string& source, const std::string& where, const std::string& message) {
-  throw Error(source + ": " + where + ": " + message);
-}
-
-const json* member(const json& obj, const char* key) {
-  if (!obj.is_object()) return nullptr;
-  const auto it = obj.find(key);
-  return it == obj.end() ? nullptr : &*it;
-}
-
-int componentCount(int type) {
-  switch (type) {
-    case TINYGLTF_TYPE_SCALAR: return 1;
-    case TINYGLTF_TYPE_VEC2: return 2;
-    case TINYGLTF_TYPE_VEC3: return 3;
-    case TINYGLTF_TYPE_VEC4: return 4;
-    default: return 0;
-  }
-}
 
 // One Draco component as a double; false for data types glTF has no use for.
 bool component(const std::uint8_t* p, draco::DataType t, double& out) {

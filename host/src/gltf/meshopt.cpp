@@ -10,6 +10,7 @@
 #include <limits>
 
 #include "brdfcl/error.hpp"
+#include "gltf/json_lookup.hpp"
 #include "io/messages.hpp"
 
 namespace brdfcl::gltf::detail {
@@ -26,16 +27,6 @@ constexpr const char* kName = "EXT_meshopt_compression";
 constexpr std::uint64_t kMaxExpansion = 64;
 
 std::string at(const char* kind, std::size_t i) { return std::string(kind) + "[" + std::to_string(i) + "]"; }
-
-[[noreturn]] void fail(const std::string& source, const std::string& where, const std::string& message) {
-  throw Error(source + ": " + where + ": " + message);
-}
-
-const json* member(const json& obj, const char* key) {
-  if (!obj.is_object()) return nullptr;
-  const auto it = obj.find(key);
-  return it == obj.end() ? nullptr : &*it;
-}
 
 const json* extensionOf(const json& obj) {
   const json* ext = member(obj, "extensions");
