@@ -184,7 +184,7 @@ TEST_F(ExrBands, TilesKeepEveryPixel) {
 // (undefined; UBSan aborted). Under make test-asan this test aborts if images.cpp is built with
 // UBSan again; in any build the file loads or is refused in one line.
 TEST(FuzzRegressions, GltfPngWithAnEmptyFirstIdat) {
-  const std::string p = corpus("gltf", "png_empty_idat_null_memcpy.gltf");
+  const std::string p = corpus("gltf", "finding_png_empty_idat.gltf");
   try {
     const brdfcl::gltf::Asset a = brdfcl::gltf::load(p);
     EXPECT_FALSE(a.images.empty());
