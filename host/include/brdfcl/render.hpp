@@ -37,6 +37,7 @@ class Shader {
  public:
   Shader(Runtime& rt, const Scene& scene, EvalOptions options = {});
   ~Shader();
+  // Not for concurrent calls on one Shader: it keeps its G-buffer planes between frames.
   Image shade(const GBuffer& g);
 
  private:

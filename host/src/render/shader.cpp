@@ -5,6 +5,7 @@
 #include <cmath>
 #include <map>
 #include <mutex>
+#include <utility>
 #include <type_traits>
 
 #include <fmt/format.h>
@@ -77,9 +78,11 @@ int levelW(int w0, int k) { return std::max(w0 >> k, 8); }
 int levelH(int h0, int k) { return std::max(h0 >> k, 4); }
 
 // G-buffer channels -> the planes of kernels/common/shading_layout.h, defaults for absent ones.
-std::vector<float> gbufferPlanes(const GBuffer& g) {
+// Fills `planes`, reusing its memory: at 512x512 the planes pass glibc's 32 MiB mmap threshold,
+// so a fresh vector per frame would be mapped and page-faulted in again on every shade().
+void gbufferPlanes(const GBuffer& g, std::vector<float>& planes) {
   const std::size_t n = std::size_t(g.width) * g.height;
-  std::vector<float> planes(GB_PLANES * n, 0.0f);
+  planes.assign(GB_PLANES * n, 0.0f);
   auto put3 = [&](const std::vector<float>& v, int first) {
     if (v.empty()) return;
     for (std::size_t i = 0; i < n; ++i)
@@ -130,7 +133,6 @@ std::vector<float> gbufferPlanes(const GBuffer& g) {
                               "towards the viewer, or leave V out to use the scene camera",
                               i % g.width, i / g.width));
   }
-  return planes;
 }
 
 cl::Buffer readOnly(const cl::Context& ctx, const std::vector<float>& v) {
@@ -275,10 +277,12 @@ struct Shader::State {
   cl::Buffer lights;
   int lightCount = 0;
   cl::Program program;
+  std::vector<float> planes;  // the G-buffer's planes, kept between frames (see gbufferPlanes)
+  std::pair<std::size_t, cl::Buffer> planesOnDevice;  // their device copy, and its size in floats
 };
 
 Shader::Shader(Runtime& rt, const Scene& scene, EvalOptions options)
-    : s_(std::make_unique<State>(State{rt, scene, options, nullptr, {}, 0, {}})) {
+    : s_(std::make_unique<State>(State{rt, scene, options, nullptr, {}, 0, {}, {}, {}})) {
   auto& s = *s_;
   s.light = prepareLight(rt, scene.environment, options);
   try {
@@ -402,7 +406,8 @@ Shader::~Shader() = default;
 
 Image Shader::shade(const GBuffer& g) {
   auto& s = *s_;
-  const auto planes = gbufferPlanes(g);
+  auto& planes = s.planes;
+  gbufferPlanes(g, planes);
   Image img;
   img.width = g.width;
   img.height = g.height;
@@ -410,7 +415,13 @@ Image Shader::shade(const GBuffer& g) {
   std::vector<float> out(3 * np);
   try {
     const auto& ctx = s.rt.context();
-    cl::Buffer bg = readOnly(ctx, planes), bo(ctx, CL_MEM_WRITE_ONLY, out.size() * 4);
+    // The device copy of the planes is kept between frames of one size, like the planes themselves.
+    if (s.planesOnDevice.first != planes.size()) {
+      s.planesOnDevice = {planes.size(), cl::Buffer(ctx, CL_MEM_READ_ONLY, planes.size() * 4)};
+    }
+    cl::Buffer& bg = s.planesOnDevice.second;
+    s.rt.queue().enqueueWriteBuffer(bg, CL_FALSE, 0, planes.size() * 4, planes.data());
+    cl::Buffer bo(ctx, CL_MEM_WRITE_ONLY, out.size() * 4);
     cl::Kernel k(s.program, "shade");
     int a = 0;
     k.setArg(a++, bg);
