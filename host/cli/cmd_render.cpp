@@ -43,6 +43,10 @@ void requireExtension(const std::string& option, const std::string& path, const 
     throw Error(fmt::format("{} '{}' must end in {}", option, path, extension));
 }
 
+void checkSpp(int spp) {
+  if (spp < 1 || spp > 1024) throw Error(fmt::format("--spp {} is out of range; use 1 to 1024", spp));
+}
+
 void writeImages(const Image& img, const std::string& exr, const std::string& png, float exposure) {
   if (!exr.empty()) writeExrRgb(exr, img.width, img.height, img.rgb);
   if (!png.empty()) writePng(png, img.width, img.height, img.rgb, exposure);
@@ -106,7 +110,7 @@ struct LightingArgs {
     cmd->add_option("--environment", environment, "builtin|sky|studio|uniform|FILE.hdr|FILE.exr (default builtin: the sky)");
     cmd->add_option("--env-intensity", envIntensity, "environment radiance scale (default 1)");
     cmd->add_option("--env-rotation", envRotation, "environment rotation about +Y in radians (default 0)");
-    cmd->add_option("--lights", lights, "gltf (the file's lights, else a default key light), none, or SCENE.json");
+    cmd->add_option("--lights", lights, "gltf (the scene's own lights: a file's KHR lights, else a default key light; the spheres' key and fill), none, or SCENE.json");
   }
   Environment environmentChoice(CLI::App* cmd) {
     environmentGiven = cmd->count("--environment") || cmd->count("--env-intensity") || cmd->count("--env-rotation");
@@ -200,7 +204,7 @@ void addRenderCommands(CLI::App& app) {
       requireExtension("--out", a->out, ".png");
       requireExtension("--exr", a->exr, ".exr");
       requireExtension("--gbuffer", a->gbuffer, ".exr");
-      if (a->spp < 1 || a->spp > 1024) throw Error(fmt::format("--spp {} is out of range; use 1 to 1024", a->spp));
+      checkSpp(a->spp);
       const Environment environment = a->lighting.environmentChoice(cmd);
       if (!a->gltf.path.empty()) {
         if (cmd->count("--scene")) throw Error("--scene and --gltf are alternatives; give one");
@@ -217,13 +221,7 @@ void addRenderCommands(CLI::App& app) {
       if (!a->gltf.size.empty()) parseSize(a->gltf.size, w, h);
       Scene scene = builtinScene(a->scene);
       if (a->lighting.environmentGiven) scene.environment = environment;
-      if (a->lighting.lights == "none") {
-        scene.lights.clear();
-      } else if (a->lighting.lights != "gltf") {
-        const Scene file = readScene(a->lighting.lights);
-        scene.lights = file.lights;
-        if (!a->lighting.environmentGiven) scene.environment = file.environment;
-      }
+      gltf::applyLightsOption(scene, a->lighting.lights, a->lighting.environmentGiven);
       Runtime rt(a->device);
       const GBuffer g = renderSpheresGBuffer(rt, scene, w, h);
       if (!a->gbuffer.empty()) writeGBuffer(a->gbuffer, g);
@@ -244,7 +242,7 @@ void addRenderCommands(CLI::App& app) {
     cmd->add_option("--exposure", a->exposure, "exposure in stops (default 0)");
     cmd->add_option("--device", a->device, "device index or name substring");
     cmd->callback([a] {
-      if (a->spp < 1 || a->spp > 1024) throw Error(fmt::format("--spp {} is out of range; use 1 to 1024", a->spp));
+      checkSpp(a->spp);
       std::filesystem::create_directories("out");
       const std::string glb = "out/demo.glb", png = "out/demo.png", exr = "out/demo.exr";
       gltf::writeDemoAsset(glb);

@@ -17,9 +17,13 @@ namespace brdfcl::gltf {
 // normalize(0.5 right - up + 0.6 forward) of the view.
 Light defaultKeyLight(const View& view);
 
-// `--lights` for a glTF render: "gltf" (the file's lights, else defaultKeyLight), "none", or a
-// scene JSON whose lights and environment are taken (docs/gbuffer.md). `environment` is the
-// --environment choice; it replaces a scene file's environment only when `environmentGiven`.
+// `--lights` applied to a scene that has its own lights: "gltf" keeps them, "none" removes them,
+// anything else is a scene JSON (docs/gbuffer.md) whose lights replace them and whose environment
+// replaces the scene's unless the user gave --environment (`environmentGiven`).
+void applyLightsOption(Scene& scene, const std::string& lights, bool environmentGiven);
+
+// The lighting of a glTF render: the file's KHR_lights_punctual lights (a file with none gets
+// defaultKeyLight) and `environment`, then applyLightsOption.
 Scene frameLighting(const Asset& asset, const View& view, const std::string& lights, const Environment& environment,
                     bool environmentGiven);
 

@@ -21,18 +21,24 @@ Light defaultKeyLight(const View& view) {
   return key;
 }
 
+void applyLightsOption(Scene& scene, const std::string& lights, bool environmentGiven) {
+  if (lights == "gltf") return;
+  if (lights == "none") {
+    scene.lights.clear();
+    return;
+  }
+  const Scene file = readScene(lights);
+  scene.lights = file.lights;
+  if (!environmentGiven) scene.environment = file.environment;
+}
+
 Scene frameLighting(const Asset& asset, const View& view, const std::string& lights, const Environment& environment,
                     bool environmentGiven) {
   Scene scene;
   scene.environment = environment;
-  if (lights == "gltf") {
-    scene.lights = asset.lights;
-    if (scene.lights.empty()) scene.lights.push_back(defaultKeyLight(view));
-  } else if (lights != "none") {
-    const Scene file = readScene(lights);
-    scene.lights = file.lights;
-    if (!environmentGiven) scene.environment = file.environment;
-  }
+  scene.lights = asset.lights;
+  if (scene.lights.empty()) scene.lights.push_back(defaultKeyLight(view));
+  applyLightsOption(scene, lights, environmentGiven);
   return scene;
 }
 
