@@ -97,4 +97,9 @@ class ResultWriter {
 // before `write` runs: "cannot write 'out/x.csv': No such file or directory".
 void writeAtomically(const std::string& path, const std::function<void(const std::string& tmpPath)>& write);
 
+// Checks, before any work starts, that `path` can be written as the output named by `option`
+// (e.g. "--png"): not a directory, its directory exists and is writable. Throws the Error the
+// write would throw later: "--png '/nonexistent/o.png': cannot write: No such file or directory".
+void checkOutputPath(const std::string& option, const std::string& path);
+
 }  // namespace brdfcl

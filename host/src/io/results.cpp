@@ -252,4 +252,19 @@ void writeAtomically(const std::string& path, const std::function<void(const std
   }
 }
 
+void checkOutputPath(const std::string& option, const std::string& path) {
+  namespace fs = std::filesystem;
+  const std::string head = option + " '" + printable(path, 300) + "': cannot write: ";
+  struct stat st {};
+  if (::stat(path.c_str(), &st) == 0) {
+    if (S_ISDIR(st.st_mode)) throw Error(head + "it is a directory; name a file inside it");
+    if (::access(path.c_str(), W_OK) != 0) throw Error(head + std::strerror(errno));
+  }
+  const fs::path dir = fs::path(path).parent_path();
+  const std::string d = dir.empty() ? "." : dir.string();
+  if (::stat(d.c_str(), &st) != 0) throw Error(head + std::strerror(errno));
+  if (!S_ISDIR(st.st_mode)) throw Error(head + "'" + printable(d, 300) + "' is not a directory");
+  if (::access(d.c_str(), W_OK | X_OK) != 0) throw Error(head + std::strerror(errno));
+}
+
 }  // namespace brdfcl
