@@ -1,36 +1,74 @@
-// `brdfcl albedo`: the built-in gallery's directional albedo per lobe at a few view angles,
-// evaluated on the device. Albedo <= 1 is energy conservation at a glance.
+// `brdfcl albedo`: the directional albedo per lobe at a few view angles, evaluated on the device,
+// of the built-in gallery or of the user's own materials. Albedo <= 1 is energy conservation at a glance.
 #include <cmath>
+#include <cstdio>
 
 #include <fmt/format.h>
 
 #include "brdfcl/albedo.hpp"
+#include "brdfcl/error.hpp"
 #include "brdfcl/gallery.hpp"
+#include "brdfcl/io.hpp"
 #include "commands.hpp"
 
 namespace brdfcl::cli {
 
+namespace {
+struct AlbedoArgs {
+  std::string device, materials;
+  long long material = -1;
+  std::string visibility = "charlie", distribution = "charlie", scaling = "min";
+};
+}  // namespace
+
 void addAlbedoCommand(CLI::App& app) {
-  auto device = std::make_shared<std::string>();
-  auto* cmd = app.add_subcommand("albedo", "Print the directional albedo of the built-in material gallery");
-  cmd->add_option("--device", *device, "device index or name substring (default $BRDFCL_DEVICE, then 0)");
-  cmd->callback([device] {
-    Runtime rt(*device);
-    const auto materials = gallery();
+  auto args = std::make_shared<AlbedoArgs>();
+  auto* cmd = app.add_subcommand("albedo", "Print the directional albedo per lobe of the built-in gallery or of your materials");
+  cmd->add_option("--materials", args->materials, "glTF 2.0 JSON (or .glb) whose materials to integrate (default: the built-in gallery)");
+  cmd->add_option("--material", args->material, "only this material index of --materials (default: all)");
+  cmd->add_option("--sheen-visibility", args->visibility, "charlie|ashikhmin (default charlie)");
+  cmd->add_option("--sheen-distribution", args->distribution, "charlie|ashikhmin (default charlie)");
+  cmd->add_option("--sheen-scaling", args->scaling, "min|view|none (default min)");
+  cmd->add_option("--device", args->device, "device index or name substring (default $BRDFCL_DEVICE, then 0)");
+  cmd->callback([args, cmd] {
+    EvalOptions base;
+    base.sheenVisibility = parseSheenVisibility(args->visibility);
+    base.sheenDistribution = parseSheenDistribution(args->distribution);
+    base.sheenScaling = parseSheenScaling(args->scaling);
+    std::vector<MaterialParams> materials;
+    if (args->materials.empty()) {
+      if (cmd->count("--material")) throw Error("--material applies to --materials FILE; add --materials");
+      materials = gallery();
+    } else {
+      materials = readMaterials(args->materials, [](const std::string& w) {
+        std::fprintf(stderr, "brdfcl: warning: %s\n", w.c_str());
+      });
+      if (materials.empty()) throw Error(fmt::format("{}: the file has no materials", args->materials));
+      for (std::size_t m = 0; m < materials.size(); ++m)
+        if (materials[m].name.empty()) materials[m].name = fmt::format("materials[{}]", m);
+      if (cmd->count("--material")) {
+        if (args->material < 0 || args->material >= static_cast<long long>(materials.size()))
+          throw Error(fmt::format("--material {} is out of range: {} has {} material(s), 0 to {}", args->material,
+                                  args->materials, materials.size(), materials.size() - 1));
+        materials = {materials[std::size_t(args->material)]};
+      }
+    }
+    Runtime rt(args->device);
     const std::vector<float> anglesDeg = {0, 30, 60, 75, 85};
     std::vector<float> mus;
     for (float a : anglesDeg) mus.push_back(float(std::cos(a * M_PI / 180.0)));
     const std::vector<Lobe> lobes = {Lobe::Diffuse, Lobe::Specular, Lobe::Sheen, Lobe::Clearcoat, Lobe::All};
     std::vector<std::vector<float>> perLobe;
     for (Lobe l : lobes) {
-      EvalOptions o;
+      EvalOptions o = base;
       o.lobe = l;
       Evaluator ev(rt, o);
       perLobe.push_back(directionalAlbedo(ev, materials, mus));
     }
     fmt::print("brdfcl albedo on {} ({})\n", rt.info().name, rt.info().platform);
     fmt::print("Directional albedo: integral of f(L,V) N.L over the hemisphere of L, as luminance\n"
-               "(Rec. 709 Y of the RGB albedo). Defaults: Charlie sheen, min albedo scaling.\n\n");
+               "(Rec. 709 Y of the RGB albedo). Sheen: {} distribution, {} visibility, {} albedo scaling.\n\n",
+               args->distribution, args->visibility, args->scaling);
     for (std::size_t m = 0; m < materials.size(); ++m) {
       fmt::print("{}\n  {:<10}", materials[m].name, "view");
       for (float a : anglesDeg) fmt::print("{:>9}", fmt::format("{:.0f} deg", a));

@@ -42,12 +42,13 @@ void addEvalCommand(CLI::App& app) {
     o.sheenDistribution = parseSheenDistribution(args->distribution);
     o.sheenScaling = parseSheenScaling(args->scaling);
     o.lobe = parseLobe(args->lobe);
-    auto materials = readMaterials(args->materials, [](const std::string& w) {
-      std::fprintf(stderr, "brdfcl: warning: %s\n", w.c_str());
-    });
     if (args->chunk < 1 || args->chunk > static_cast<long long>(StreamOptions::kMaxChunk))
       throw Error("--chunk " + std::to_string(args->chunk) + " is out of range; use 1 to " +
                   std::to_string(StreamOptions::kMaxChunk));
+    checkOutputPath("--out", args->out);
+    auto materials = readMaterials(args->materials, [](const std::string& w) {
+      std::fprintf(stderr, "brdfcl: warning: %s\n", w.c_str());
+    });
     // The header is checked before the device is set up; rows are checked as they stream.
     SampleStream samples(args->samples, args->grid ? 0 : materials.size(), args->grid);
     Runtime rt(args->device);

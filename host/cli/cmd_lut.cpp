@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include "brdfcl/error.hpp"
+#include "brdfcl/io.hpp"
 #include "brdfcl/lut.hpp"
 #include "commands.hpp"
 
@@ -26,14 +27,20 @@ void addLutCommand(CLI::App& app) {
   cmd->add_option("--sheen-distribution", args->distribution, "sheen-e only: charlie|ashikhmin (default charlie)");
   cmd->add_option("--out", args->out, "output .exr (FLOAT R[,G]), .csv or .h")->required();
   cmd->add_option("--device", args->device, "device index or name substring (default $BRDFCL_DEVICE, then 0)");
-  cmd->callback([args] {
+  cmd->callback([args, cmd] {
     const LutKind kind = parseLutKind(args->kind);
+    // The DFG tables have no sheen choices: accepting them would change nothing silently.
+    if (kind != LutKind::SheenE)
+      for (const char* o : {"--sheen-visibility", "--sheen-distribution"})
+        if (cmd->count(o))
+          throw Error(std::string(o) + " applies to --kind sheen-e only; drop it for --kind " + args->kind);
     if (args->size < static_cast<long long>(kMinLutSize) || args->size > static_cast<long long>(kMaxLutSize))
       throw Error("--size " + std::to_string(args->size) + " is out of range; use 2 to 4096");
     EvalOptions o;
     o.sheenVisibility = parseSheenVisibility(args->visibility);
     o.sheenDistribution = parseSheenDistribution(args->distribution);
     checkLutPath(args->out);
+    checkOutputPath("--out", args->out);
     Runtime rt(args->device);
     const auto lut = bakeLut(rt, kind, std::size_t(args->size), o);
     writeLut(lut, args->out);

@@ -3,17 +3,20 @@
 // environment, and both chained into linear EXR radiance and a tone-mapped PNG.
 #include <unistd.h>
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 
 #include <fmt/format.h>
 
 #include "brdfcl/demo_asset.hpp"
+#include "brdfcl/frame_budget.hpp"
 #include "brdfcl/error.hpp"
 #include "brdfcl/gbuffer.hpp"
 #include "brdfcl/gltf.hpp"
 #include "brdfcl/gltf_frame.hpp"
 #include "brdfcl/image.hpp"
+#include "brdfcl/io.hpp"
 #include "brdfcl/render.hpp"
 #include "commands.hpp"
 
@@ -41,6 +44,17 @@ std::string lowerExtension(const std::string& path) {
 void requireExtension(const std::string& option, const std::string& path, const char* extension) {
   if (!path.empty() && lowerExtension(path) != extension)
     throw Error(fmt::format("{} '{}' must end in {}", option, path, extension));
+}
+
+void checkExposure(float exposure) {
+  if (!std::isfinite(exposure)) throw Error(fmt::format("--exposure {} is not a finite number of stops; use e.g. 0 or -1.5", exposure));
+}
+
+// Every output named on the command line, checked before any work: extension and writability.
+void checkOutput(const std::string& option, const std::string& path, const char* extension) {
+  if (path.empty()) return;
+  requireExtension(option, path, extension);
+  checkOutputPath(option, path);
 }
 
 void checkSpp(int spp) {
@@ -141,10 +155,11 @@ void addRenderCommands(CLI::App& app) {
     cmd->add_option("--out", a->out, "output G-buffer .exr")->required();
     cmd->add_option("--device", a->device, "device index or name substring");
     cmd->callback([a, cmd] {
-      requireExtension("--out", a->out, ".exr");
+      checkOutput("--out", a->out, ".exr");
       if (!a->gltf.path.empty()) {
         if (cmd->count("--scene")) throw Error("--scene and --gltf are alternatives; give one");
         const LoadedAsset l = loadAsset(a->gltf);
+        checkFrameFits(FrameJob::GBuffer, l.width, l.height, usableHostMemory(), nullptr);
         gltf::Raycaster raycaster(l.asset);
         writeGBuffer(a->out, raycaster.trace(l.view, l.width, l.height));
         return;
@@ -154,30 +169,45 @@ void addRenderCommands(CLI::App& app) {
       if (!a->gltf.size.empty()) parseSize(a->gltf.size, w, h);
       const Scene scene = builtinScene(a->scene);
       Runtime rt(a->device);
+      checkFrameFits(FrameJob::GBuffer, w, h, usableHostMemory(), &rt.info());
       writeGBuffer(a->out, renderSpheresGBuffer(rt, scene, w, h));
     });
   }
   {
     struct Args {
-      std::string gbuffer, scene, out, png, device;
+      std::string gbuffer, scene, out, png, exr, device;
       float exposure = 0.0f;
     };
     auto a = std::make_shared<Args>();
     auto* cmd = app.add_subcommand("shade", "Shade a G-buffer EXR under a scene's lights and environment");
     cmd->add_option("--gbuffer", a->gbuffer, "G-buffer .exr (docs/gbuffer.md)")->required();
     cmd->add_option("--scene", a->scene, "scene JSON (docs/gbuffer.md)")->required();
-    cmd->add_option("--out", a->out, "linear radiance .exr")->required();
+    cmd->add_option("--out", a->out, "linear radiance .exr, or a tone-mapped sRGB .png")->required();
     cmd->add_option("--png", a->png, "also a tone-mapped sRGB PNG");
+    cmd->add_option("--exr", a->exr, "also the linear radiance as .exr");
     cmd->add_option("--exposure", a->exposure, "exposure in stops for the PNG (default 0)");
     cmd->add_option("--device", a->device, "device index or name substring");
     cmd->callback([a] {
-      requireExtension("--out", a->out, ".exr");
-      requireExtension("--png", a->png, ".png");
+      std::string exr = a->exr, png = a->png;
+      if (lowerExtension(a->out) == ".png") {
+        if (!png.empty()) throw Error("--out is already the PNG; drop --png, or give --out FILE.exr");
+        png = a->out;
+      } else {
+        if (lowerExtension(a->out) != ".exr")
+          throw Error(fmt::format("--out '{}' must end in .exr or .png", a->out));
+        if (!exr.empty()) throw Error("--out is already the EXR; drop --exr, or give --out FILE.png");
+        exr = a->out;
+      }
+      checkOutput("--out", a->out, lowerExtension(a->out).c_str());
+      checkOutput("--png", a->png, ".png");
+      checkOutput("--exr", a->exr, ".exr");
+      checkExposure(a->exposure);
       const GBuffer g = readGBuffer(a->gbuffer);
       const Scene scene = readScene(a->scene);
       Runtime rt(a->device);
+      checkFrameFits(FrameJob::Shade, g.width, g.height, usableHostMemory(), &rt.info(), a->gbuffer);
       Shader shader(rt, scene);
-      writeImages(shader.shade(g), a->out, a->png, a->exposure);
+      writeImages(shader.shade(g), exr, png, a->exposure);
     });
   }
   {
@@ -196,14 +226,23 @@ void addRenderCommands(CLI::App& app) {
     cmd->add_option("--spp", a->spp, "stratified sub-pixel samples per pixel, glTF only (default 4)");
     a->lighting.add(cmd);
     cmd->add_option("--exposure", a->exposure, "exposure in stops (default 0)");
-    cmd->add_option("--out", a->out, "output .png")->required();
+    cmd->add_option("--out", a->out, "output tone-mapped .png, or linear radiance .exr")->required();
     cmd->add_option("--exr", a->exr, "also the linear radiance as .exr");
     cmd->add_option("--gbuffer", a->gbuffer, "also the pixel-centre G-buffer as .exr");
     cmd->add_option("--device", a->device, "device index or name substring");
     cmd->callback([a, cmd] {
-      requireExtension("--out", a->out, ".png");
-      requireExtension("--exr", a->exr, ".exr");
-      requireExtension("--gbuffer", a->gbuffer, ".exr");
+      std::string png = a->out, exr = a->exr;
+      if (lowerExtension(a->out) == ".exr") {
+        if (!exr.empty()) throw Error("--out is already the EXR; drop --exr, or give --out FILE.png");
+        exr = a->out;
+        png.clear();
+      } else if (lowerExtension(a->out) != ".png") {
+        throw Error(fmt::format("--out '{}' must end in .png or .exr", a->out));
+      }
+      checkOutput("--out", a->out, lowerExtension(a->out).c_str());
+      checkOutput("--exr", a->exr, ".exr");
+      checkOutput("--gbuffer", a->gbuffer, ".exr");
+      checkExposure(a->exposure);
       checkSpp(a->spp);
       const Environment environment = a->lighting.environmentChoice(cmd);
       if (!a->gltf.path.empty()) {
@@ -212,7 +251,8 @@ void addRenderCommands(CLI::App& app) {
         const Scene lighting =
             gltf::frameLighting(l.asset, l.view, a->lighting.lights, environment, a->lighting.environmentGiven);
         Runtime rt(a->device);
-        writeImages(renderGltf(rt, l, lighting, a->spp, a->gbuffer), a->exr, a->out, a->exposure);
+        checkFrameFits(FrameJob::Render, l.width, l.height, usableHostMemory(), &rt.info());
+        writeImages(renderGltf(rt, l, lighting, a->spp, a->gbuffer), exr, png, a->exposure);
         return;
       }
       a->gltf.checkBuiltin(cmd);
@@ -223,10 +263,11 @@ void addRenderCommands(CLI::App& app) {
       if (a->lighting.environmentGiven) scene.environment = environment;
       gltf::applyLightsOption(scene, a->lighting.lights, a->lighting.environmentGiven);
       Runtime rt(a->device);
+      checkFrameFits(FrameJob::Render, w, h, usableHostMemory(), &rt.info());
       const GBuffer g = renderSpheresGBuffer(rt, scene, w, h);
       if (!a->gbuffer.empty()) writeGBuffer(a->gbuffer, g);
       Shader shader(rt, scene);
-      writeImages(shader.shade(g), a->exr, a->out, a->exposure);
+      writeImages(shader.shade(g), exr, png, a->exposure);
     });
   }
   {
@@ -243,8 +284,18 @@ void addRenderCommands(CLI::App& app) {
     cmd->add_option("--device", a->device, "device index or name substring");
     cmd->callback([a] {
       checkSpp(a->spp);
-      std::filesystem::create_directories("out");
+      checkExposure(a->exposure);
+      if (!a->size.empty()) {
+        int w = 0, h = 0;
+        parseSize(a->size, w, h);
+      }
+      std::error_code ec;
+      if (std::filesystem::exists("out", ec) && !std::filesystem::is_directory("out", ec))
+        throw Error("cannot write the demo into 'out': it exists and is not a directory; move it or run elsewhere");
+      std::filesystem::create_directories("out", ec);
+      if (ec) throw Error(fmt::format("cannot create the demo directory 'out': {}", ec.message()));
       const std::string glb = "out/demo.glb", png = "out/demo.png", exr = "out/demo.exr";
+      for (const auto& p : {glb, png, exr}) checkOutputPath("demo", p);
       gltf::writeDemoAsset(glb);
       GltfArgs args;
       args.path = glb;
@@ -254,6 +305,7 @@ void addRenderCommands(CLI::App& app) {
       studio.builtinKind = "studio";
       const Scene lighting = gltf::frameLighting(l.asset, l.view, "gltf", studio, true);
       Runtime rt(a->device);
+      checkFrameFits(FrameJob::Render, l.width, l.height, usableHostMemory(), &rt.info());
       writeImages(renderGltf(rt, l, lighting, a->spp, ""), exr, png, a->exposure);
       auto abs = [](const std::string& p) { return std::filesystem::absolute(p).string(); };
       fmt::print("brdfcl demo: wrote the sphere sweep as a glTF asset and rendered it on {}\n  {}\n  {}\n  {}\n"

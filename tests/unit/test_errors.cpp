@@ -137,9 +137,10 @@ TEST_F(Errors, NoOpenClDevice) {
 }
 
 // A device with little memory: POCL_MEMORY_LIMIT=1 gives PoCL 1 GiB of global memory and a
-// quarter of it as the largest allocation, and a G-buffer just larger than that is refused by
-// clCreateBuffer. (The default device fails the same way from about 4700 x 4700 pixels.)
-TEST_F(Errors, OpenClCallFailureNamesCallAndCode) {
+// quarter of it as the largest allocation. A G-buffer just larger than that used to fail in
+// clCreateBuffer; the size is now refused before any work, naming the device's limit and the
+// largest size that fits, and that size does run.
+TEST_F(Errors, FrameLargerThanTheDeviceAllocationIsRefusedUpFront) {
   const std::string vendors = poclOnlyVendors();
   if (vendors.empty()) GTEST_SKIP() << "PoCL's ICD is not installed";
   const std::map<std::string, std::string> env{{"OCL_ICD_VENDORS", vendors}, {"POCL_MEMORY_LIMIT", "1"}};
@@ -148,12 +149,21 @@ TEST_F(Errors, OpenClCallFailureNamesCallAndCode) {
   std::smatch m;
   ASSERT_TRUE(std::regex_search(devices.out, m, std::regex(R"(max allocation: (\d+) MiB)"))) << devices.out;
   const double maxAlloc = std::stod(m[1]) * (1 << 20);
-  const int side = int(std::ceil(std::sqrt(maxAlloc / (4.0 * GB_PLANES)))) + 1;  // 29 float planes per pixel
+  const int side = int(std::ceil(std::sqrt(maxAlloc / (4.0 * GB_PLANES)))) + 1;  // GB_PLANES floats per pixel
   ASSERT_LE(side, 3000) << "PoCL ignored POCL_MEMORY_LIMIT";
   const std::string size = std::to_string(side) + "x" + std::to_string(side);
-  expectUserError(cli({"gbuffer", "--scene", "spheres", "--size", size, "--out", path("g.exr")}, env),
-                  "ray-casting the spheres scene: OpenCL call clCreateBuffer failed: CL_INVALID_BUFFER_SIZE (-61)");
+  const Child refused = cli({"gbuffer", "--scene", "spheres", "--size", size, "--out", path("g.exr")}, env);
+  ASSERT_EQ(refused.status, 2) << refused.err;
+  ASSERT_TRUE(std::regex_search(refused.err, m,
+                                std::regex("^brdfcl: --size " + size + " needs a [0-9.]+ GiB G-buffer on the device, but '"
+                                           "[^']+' allows [0-9.]+ GiB per buffer; the largest size of that shape that "
+                                           "fits is ([0-9]+)x([0-9]+)\n$")))
+      << refused.err;
   EXPECT_TRUE(listWork().empty());
+  EXPECT_EQ(m[1], m[2]);
+  EXPECT_GE(std::stoi(m[1]), side - 3);
+  const Child fits = cli({"gbuffer", "--scene", "spheres", "--size", m[1].str() + "x" + m[2].str(), "--out", path("g.exr")}, env);
+  EXPECT_EQ(fits.status, 0) << fits.err;
 }
 
 // Every site turns a cl::Error into this message through rethrowOpenCL; here from a real
@@ -247,7 +257,7 @@ TEST_F(Errors, RenderAndShadeOutputExtensions) {
   const std::string g = path("g.exr"), s = path("s.json");
   expectUserError(cli({"shade", "--gbuffer", g, "--scene", s, "--out", path("o.exr"), "--png", path("o.jpg")}),
                   "--png '" + path("o.jpg") + "' must end in .png");
-  expectUserError(cli({"render", "--size", "8x8", "--out", path("o.jpg")}), "--out '" + path("o.jpg") + "' must end in .png");
+  expectUserError(cli({"render", "--size", "8x8", "--out", path("o.jpg")}), "--out '" + path("o.jpg") + "' must end in .png or .exr");
   expectUserError(cli({"render", "--size", "8x8", "--out", path("o.png"), "--exr", path("o.tif")}),
                   "--exr '" + path("o.tif") + "' must end in .exr");
   expectUserError(cli({"gbuffer", "--size", "8x8", "--out", path("g.png")}), "--out '" + path("g.png") + "' must end in .exr");

@@ -236,7 +236,7 @@ TEST(ShadingCli, BadInputsGiveOneLineErrorsAndNoOutput) {
       {"shade --gbuffer " + notExr.string() + " --scene " + s.string() + " --out " + out.string(), "text.exr"},
       {"shade --gbuffer " + (dir / "missing.exr").string() + " --scene " + s.string() + " --out " + out.string(), "missing.exr"},
       {"shade --gbuffer " + g.string() + " --scene " + (dir / "bad.json").string() + " --out " + out.string(), "bad.json"},
-      {"shade --gbuffer " + g.string() + " --scene " + s.string() + " --out " + (dir / "img.png").string(), "--out"},
+      {"shade --gbuffer " + g.string() + " --scene " + s.string() + " --out " + (dir / "img.json").string(), "--out"},
       {"render --scene teapot --out " + (dir / "x.png").string(), "teapot"},
       {"render --scene spheres --size 12by4 --out " + (dir / "x.png").string(), "--size"},
       {"gbuffer --scene spheres --size 0x4 --out " + g.string() + ".2.exr", "--size"},

@@ -158,8 +158,14 @@ std::string kernelSource(const std::string& kernelFile) {
 
 Runtime::Runtime(const std::string& selectorArg) {
   std::string selector = selectorArg;
+  // The message names where the selector came from: a stale BRDFCL_DEVICE in a shell profile
+  // is otherwise hard to spot.
+  std::string source = "--device";
   if (selector.empty()) {
-    if (const char* env = std::getenv("BRDFCL_DEVICE")) selector = env;
+    if (const char* env = std::getenv("BRDFCL_DEVICE")) {
+      selector = env;
+      source = "BRDFCL_DEVICE";
+    }
   }
   try {
     auto devices = allDevices();
@@ -170,14 +176,14 @@ Runtime::Runtime(const std::string& selectorArg) {
       // Digits only, so the one failure mode of stoull is overflow: report it as out of range.
       chosen = selector.size() > 9 ? devices.size() : std::size_t(std::stoull(selector));
       if (chosen >= devices.size())
-        throw Error(fmt::format("device index {} out of range: {} device(s) found; see 'brdfcl devices'", selector,
-                                devices.size()));
+        throw Error(fmt::format("{} {}: device index out of range: {} device(s) found; see 'brdfcl devices'", source,
+                                selector, devices.size()));
     } else {
       for (std::size_t i = 0; i < devices.size() && chosen == devices.size(); ++i) {
         if (describe(i, devices[i].first, devices[i].second).name.find(selector) != std::string::npos) chosen = i;
       }
       if (chosen == devices.size())
-        throw Error(fmt::format("no OpenCL device matches '{}'; see 'brdfcl devices'", selector));
+        throw Error(fmt::format("{} '{}': no OpenCL device matches; see 'brdfcl devices'", source, selector));
     }
     device_ = devices[chosen].first;
     info_ = describe(chosen, device_, devices[chosen].second);
