@@ -196,6 +196,17 @@ TEST(Lut, BakeQuadratureHasConverged) {
   }
 }
 
+// README's LUT section says so: charlie-dfg is sheen-e at its defaults, and only the Ashikhmin
+// options make sheen-e another table.
+TEST(Lut, CharlieDfgIsSheenEAtItsDefaults) {
+  const Lut charlie = bakeLut(runtime(), LutKind::CharlieDfg, 16);
+  const Lut sheenE = bakeLut(runtime(), LutKind::SheenE, 16);
+  EXPECT_EQ(charlie.values, sheenE.values);
+  EvalOptions ashikhmin;
+  ashikhmin.sheenVisibility = SheenVisibility::Ashikhmin;
+  EXPECT_NE(bakeLut(runtime(), LutKind::SheenE, 16, ashikhmin).values, charlie.values);
+}
+
 TEST(Lut, SizeOutOfRangeIsAUserError) {
   for (std::size_t s : {std::size_t(0), std::size_t(1), std::size_t(4097)}) {
     try {
