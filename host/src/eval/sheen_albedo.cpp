@@ -2,18 +2,14 @@
 // host-side bilinear lookup that mirrors the kernels' one (kernels/brdf/sheen_albedo.h).
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
-#include <filesystem>
-#include <fstream>
-#include <functional>
 
 #include <fmt/format.h>
 
 #include "brdfcl/error.hpp"
 #include "brdfcl/evaluator.hpp"
-#include "brdfcl/io.hpp"
 #include "eval/quadrature.hpp"
 #include "eval/sheen_albedo_bake.hpp"
+#include "io/disk_cache.hpp"
 #include "model/pack.hpp"
 
 namespace brdfcl {
@@ -94,41 +90,15 @@ SheenAlbedoTable bakeSheenAlbedoFrom(Runtime& rt, const std::string& kernelFile,
   return table;
 }
 
-namespace {
-std::filesystem::path cacheDir() {
-  if (const char* x = std::getenv("XDG_CACHE_HOME"); x && *x) return std::filesystem::path(x) / "brdfcl";
-  if (const char* h = std::getenv("HOME"); h && *h) return std::filesystem::path(h) / ".cache" / "brdfcl";
-  return {};
-}
-}  // namespace
-
 SheenAlbedoTable cachedSheenAlbedo(Runtime& rt, SheenDistribution d, SheenVisibility v) {
   const std::size_t n = SheenAlbedoTable::kSize;
-  const auto dir = cacheDir();
-  const std::size_t key = std::hash<std::string>{}(kernelSource("sheen_albedo.cl") + kBakeVersion + rt.info().name +
-                                                   rt.info().platform + rt.info().openclC);
-  const auto file = dir.empty() ? std::filesystem::path()
-                                : dir / fmt::format("sheen_e_{}_{}_{}_{:016x}.f32", toString(d), toString(v), n, key);
-  if (!file.empty()) {
-    std::ifstream in(file, std::ios::binary);
-    SheenAlbedoTable t{d, v, n, n, std::vector<float>(n * n)};
-    if (in.read(reinterpret_cast<char*>(t.values.data()), std::streamsize(t.values.size() * 4)) &&
-        in.peek() == std::char_traits<char>::eof())
-      return t;
-  }
+  const std::uint64_t key = detail::contentHash(kernelSource("sheen_albedo.cl") + kBakeVersion + rt.info().name +
+                                                rt.info().platform + rt.info().openclC);
+  const std::string name = fmt::format("sheen_e_{}_{}_{}_{:016x}.f32", toString(d), toString(v), n, key);
+  SheenAlbedoTable t{d, v, n, n, std::vector<float>(n * n)};
+  if (detail::loadCachedFloats(name, t.values)) return t;
   auto table = bakeSheenAlbedo(rt, d, v, n);
-  if (!file.empty()) {
-    try {
-      std::filesystem::create_directories(dir);
-      writeAtomically(file.string(), [&](const std::string& tmp) {
-        std::ofstream out(tmp, std::ios::binary);
-        out.write(reinterpret_cast<const char*>(table.values.data()), std::streamsize(table.values.size() * 4));
-        if (!out.flush()) throw Error("cannot write " + tmp);
-      });
-    } catch (const std::exception&) {
-      // A read-only or full cache only costs the next run a re-bake.
-    }
-  }
+  detail::storeCachedFloats(name, table.values);
   return table;
 }
 

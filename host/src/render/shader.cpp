@@ -13,6 +13,7 @@
 #include "brdfcl/error.hpp"
 #include "brdfcl/evaluator.hpp"
 #include "brdfcl/lut.hpp"
+#include "io/disk_cache.hpp"
 #include "brdfcl/render.hpp"
 #include "kernels/common/shading_layout.h"
 #include "model/pack.hpp"
@@ -27,6 +28,9 @@ namespace {
 constexpr int kPrefilterLevels = 6;  // roughness 0, 0.2, ..., 1
 constexpr int kIrradianceW = 64, kIrradianceH = 32;
 constexpr int kDfgSize = 64, kFresnelLambertSize = 64;
+// Part of the disk cache key of prefiltered environments: bump when the chain layout, the sample
+// counts or the levels change (the kernel source is in the key already).
+constexpr const char* kPrefilterVersion = "chains6 ggx1/128 charlie256 irr512 v1";
 
 using V3 = std::array<float, 3>;
 V3 sub(V3 a, V3 b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
@@ -301,6 +305,85 @@ Shader::Shader(Runtime& rt, const Scene& scene, EvalOptions options)
 }
 
 namespace {
+// GGX and Charlie prefiltered chains (kPrefilterLevels levels each, roughness k / (levels - 1))
+// and the irradiance map, concatenated in that order: the part of the light worth caching.
+std::vector<float> prefilterEnvironment(Runtime& rt, const std::vector<float>& env, int envW, int envH) {
+  const auto& ctx = rt.context();
+  auto& q = rt.queue();
+  // Source chain: the environment and its 2x2 box mips down to 8x4.
+  std::vector<int> ws{envW}, hs{envH};
+  while (ws.back() > 8 && hs.back() > 4) ws.push_back(std::max(ws.back() / 2, 8)), hs.push_back(std::max(hs.back() / 2, 4));
+  std::size_t chainFloats = 0;
+  for (std::size_t k = 0; k < ws.size(); ++k) chainFloats += 3 * std::size_t(ws[k]) * hs[k];
+  cl::Buffer chain(ctx, CL_MEM_READ_WRITE, chainFloats * 4);
+  q.enqueueWriteBuffer(chain, CL_TRUE, 0, env.size() * 4, env.data());
+  auto prefilterProgram = rt.program("ibl_prefilter.cl");
+  cl::Kernel down(prefilterProgram, "env_downsample");
+  std::size_t offset = 0;
+  for (std::size_t k = 0; k + 1 < ws.size(); ++k) {
+    const std::size_t size = 3 * std::size_t(ws[k]) * hs[k], next = 3 * std::size_t(ws[k + 1]) * hs[k + 1];
+    // Sub-buffer offsets need the device's base alignment; copy through temporaries instead.
+    cl::Buffer a(ctx, CL_MEM_READ_WRITE, size * 4), b(ctx, CL_MEM_READ_WRITE, next * 4);
+    q.enqueueCopyBuffer(chain, a, offset * 4, 0, size * 4);
+    down.setArg(0, a);
+    down.setArg(1, ws[k]);
+    down.setArg(2, hs[k]);
+    down.setArg(3, b);
+    down.setArg(4, ws[k + 1]);
+    down.setArg(5, hs[k + 1]);
+    q.enqueueNDRangeKernel(down, cl::NullRange, cl::NDRange(std::size_t(ws[k + 1]), std::size_t(hs[k + 1])));
+    q.enqueueCopyBuffer(b, chain, 0, (offset + size) * 4, next * 4);
+    offset += size;
+  }
+
+  // Prefiltered chains: level k of kPrefilterLevels at roughness k / (levels - 1).
+  cl::Kernel pre(prefilterProgram, "env_prefilter");
+  auto prefilterChain = [&](int kind) {
+    std::vector<float> all;
+    for (int k = 0; k < kPrefilterLevels; ++k) {
+      const int w = levelW(envW, k), h = levelH(envH, k);
+      cl::Buffer out(ctx, CL_MEM_WRITE_ONLY, 3 * std::size_t(w) * h * 4);
+      pre.setArg(0, chain);
+      pre.setArg(1, envW);
+      pre.setArg(2, envH);
+      pre.setArg(3, int(ws.size()));
+      pre.setArg(4, kind);
+      pre.setArg(5, float(k) / float(kPrefilterLevels - 1));
+      pre.setArg(6, cl_uint(kind == 0 ? (k == 0 ? 1 : 128) : 256));
+      pre.setArg(7, out);
+      pre.setArg(8, w);
+      pre.setArg(9, h);
+      q.enqueueNDRangeKernel(pre, cl::NullRange, cl::NDRange(std::size_t(w), std::size_t(h)));
+      std::vector<float> level(3 * std::size_t(w) * h);
+      q.enqueueReadBuffer(out, CL_TRUE, 0, level.size() * 4, level.data());
+      all.insert(all.end(), level.begin(), level.end());
+    }
+    return all;
+  };
+  std::vector<float> arrays = prefilterChain(0);
+  const std::vector<float> charlie = prefilterChain(1);
+  arrays.insert(arrays.end(), charlie.begin(), charlie.end());
+  {
+    cl::Buffer out(ctx, CL_MEM_WRITE_ONLY, 3 * kIrradianceW * kIrradianceH * 4);
+    pre.setArg(0, chain);
+    pre.setArg(1, envW);
+    pre.setArg(2, envH);
+    pre.setArg(3, int(ws.size()));
+    pre.setArg(4, 2);
+    pre.setArg(5, 1.0f);
+    pre.setArg(6, cl_uint(512));
+    pre.setArg(7, out);
+    pre.setArg(8, kIrradianceW);
+    pre.setArg(9, kIrradianceH);
+    q.enqueueNDRangeKernel(pre, cl::NullRange, cl::NDRange(kIrradianceW, kIrradianceH));
+    std::vector<float> irr(3 * kIrradianceW * kIrradianceH);
+    q.enqueueReadBuffer(out, CL_TRUE, 0, irr.size() * 4, irr.data());
+    arrays.insert(arrays.end(), irr.begin(), irr.end());
+  }
+
+  return arrays;
+}
+
 std::shared_ptr<const PreparedLight> prepareLight(Runtime& rt, const Environment& environment, const EvalOptions& options) {
   static std::mutex mutex;
   static std::map<std::string, std::shared_ptr<const PreparedLight>> cache;
@@ -313,81 +396,38 @@ std::shared_ptr<const PreparedLight> prepareLight(Runtime& rt, const Environment
   auto& s = *prepared;
   const auto env = environmentPlanes(environment, s.envW, s.envH);
   const auto& ctx = rt.context();
-  auto& q = rt.queue();
   try {
-    // Source chain: the environment and its 2x2 box mips down to 8x4.
-    std::vector<int> ws{s.envW}, hs{s.envH};
-    while (ws.back() > 8 && hs.back() > 4) ws.push_back(std::max(ws.back() / 2, 8)), hs.push_back(std::max(hs.back() / 2, 4));
-    std::size_t chainFloats = 0;
-    for (std::size_t k = 0; k < ws.size(); ++k) chainFloats += 3 * std::size_t(ws[k]) * hs[k];
-    cl::Buffer chain(ctx, CL_MEM_READ_WRITE, chainFloats * 4);
-    q.enqueueWriteBuffer(chain, CL_TRUE, 0, env.size() * 4, env.data());
-    auto prefilterProgram = rt.program("ibl_prefilter.cl");
-    cl::Kernel down(prefilterProgram, "env_downsample");
-    std::size_t offset = 0;
-    for (std::size_t k = 0; k + 1 < ws.size(); ++k) {
-      const std::size_t size = 3 * std::size_t(ws[k]) * hs[k], next = 3 * std::size_t(ws[k + 1]) * hs[k + 1];
-      // Sub-buffer offsets need the device's base alignment; copy through temporaries instead.
-      cl::Buffer a(ctx, CL_MEM_READ_WRITE, size * 4), b(ctx, CL_MEM_READ_WRITE, next * 4);
-      q.enqueueCopyBuffer(chain, a, offset * 4, 0, size * 4);
-      down.setArg(0, a);
-      down.setArg(1, ws[k]);
-      down.setArg(2, hs[k]);
-      down.setArg(3, b);
-      down.setArg(4, ws[k + 1]);
-      down.setArg(5, hs[k + 1]);
-      q.enqueueNDRangeKernel(down, cl::NullRange, cl::NDRange(std::size_t(ws[k + 1]), std::size_t(hs[k + 1])));
-      q.enqueueCopyBuffer(b, chain, 0, (offset + size) * 4, next * 4);
-      offset += size;
-    }
     s.background = readOnly(ctx, env);
-
-    // Prefiltered chains: level k of kPrefilterLevels at roughness k / (levels - 1).
-    cl::Kernel pre(prefilterProgram, "env_prefilter");
-    auto prefilterChain = [&](int kind) {
-      std::vector<float> all;
-      for (int k = 0; k < kPrefilterLevels; ++k) {
-        const int w = levelW(s.envW, k), h = levelH(s.envH, k);
-        cl::Buffer out(ctx, CL_MEM_WRITE_ONLY, 3 * std::size_t(w) * h * 4);
-        pre.setArg(0, chain);
-        pre.setArg(1, s.envW);
-        pre.setArg(2, s.envH);
-        pre.setArg(3, int(ws.size()));
-        pre.setArg(4, kind);
-        pre.setArg(5, float(k) / float(kPrefilterLevels - 1));
-        pre.setArg(6, cl_uint(kind == 0 ? (k == 0 ? 1 : 128) : 256));
-        pre.setArg(7, out);
-        pre.setArg(8, w);
-        pre.setArg(9, h);
-        q.enqueueNDRangeKernel(pre, cl::NullRange, cl::NDRange(std::size_t(w), std::size_t(h)));
-        std::vector<float> level(3 * std::size_t(w) * h);
-        q.enqueueReadBuffer(out, CL_TRUE, 0, level.size() * 4, level.data());
-        all.insert(all.end(), level.begin(), level.end());
-      }
-      return readOnly(ctx, all);
-    };
-    s.ggx = prefilterChain(0);
-    s.charlie = prefilterChain(1);
-    {
-      cl::Buffer out(ctx, CL_MEM_WRITE_ONLY, 3 * kIrradianceW * kIrradianceH * 4);
-      pre.setArg(0, chain);
-      pre.setArg(1, s.envW);
-      pre.setArg(2, s.envH);
-      pre.setArg(3, int(ws.size()));
-      pre.setArg(4, 2);
-      pre.setArg(5, 1.0f);
-      pre.setArg(6, cl_uint(512));
-      pre.setArg(7, out);
-      pre.setArg(8, kIrradianceW);
-      pre.setArg(9, kIrradianceH);
-      q.enqueueNDRangeKernel(pre, cl::NullRange, cl::NDRange(kIrradianceW, kIrradianceH));
-      std::vector<float> irr(3 * kIrradianceW * kIrradianceH);
-      q.enqueueReadBuffer(out, CL_TRUE, 0, irr.size() * 4, irr.data());
-      s.irradiance = readOnly(ctx, irr);
+    // The prefiltered chains and irradiance depend only on the environment's texels and the
+    // prefilter kernel: keyed by both, they come from the disk cache on every run but the first.
+    const std::string device = rt.info().name + "|" + rt.info().platform + "|" + rt.info().openclC;
+    const std::uint64_t prefilterKey = detail::contentHash(
+        env, detail::contentHash(fmt::format("{}|{}|{}x{}|{}|{}x{}", kernelSource("ibl_prefilter.cl"), kPrefilterVersion,
+                                             s.envW, s.envH, device, kIrradianceW, kIrradianceH)));
+    std::size_t chainFloats = 0;
+    for (int k = 0; k < kPrefilterLevels; ++k) chainFloats += 3 * std::size_t(levelW(s.envW, k)) * levelH(s.envH, k);
+    std::vector<float> arrays(2 * chainFloats + 3 * kIrradianceW * kIrradianceH);
+    const std::string prefilterName = fmt::format("env_{}x{}_{:016x}.f32", s.envW, s.envH, prefilterKey);
+    if (!detail::loadCachedFloats(prefilterName, arrays)) {
+      arrays = prefilterEnvironment(rt, env, s.envW, s.envH);
+      detail::storeCachedFloats(prefilterName, arrays);
     }
+    auto part = [&](std::size_t begin, std::size_t count) {
+      return readOnly(ctx, std::vector<float>(arrays.begin() + std::ptrdiff_t(begin),
+                                              arrays.begin() + std::ptrdiff_t(begin + count)));
+    };
+    s.ggx = part(0, chainFloats);
+    s.charlie = part(chainFloats, chainFloats);
+    s.irradiance = part(2 * chainFloats, 3 * kIrradianceW * kIrradianceH);
 
-    const auto dfg = bakeLut(rt, LutKind::GgxDfg, kDfgSize);
-    s.dfg = readOnly(ctx, dfg.values);
+    std::vector<float> dfg(2 * kDfgSize * kDfgSize);
+    const std::string dfgName =
+        fmt::format("ggx_dfg_{}_{:016x}.f32", kDfgSize, detail::contentHash(kernelSource("lut.cl") + "|" + device));
+    if (!detail::loadCachedFloats(dfgName, dfg)) {
+      dfg = bakeLut(rt, LutKind::GgxDfg, kDfgSize).values;
+      detail::storeCachedFloats(dfgName, dfg);
+    }
+    s.dfg = readOnly(ctx, dfg);
     const auto e = cachedSheenAlbedo(rt, options.sheenDistribution, options.sheenVisibility);
     s.sheenE = readOnly(ctx, e.values);
     s.sheenESize = int(e.width);

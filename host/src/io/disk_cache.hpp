@@ -1,0 +1,27 @@
+// brdfcl's on-disk cache of baked tables ($XDG_CACHE_HOME/brdfcl or ~/.cache/brdfcl): float
+// arrays under names whose hash covers everything that made them, written atomically.
+#pragma once
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace brdfcl::detail {
+
+// The cache directory; empty when neither XDG_CACHE_HOME nor HOME is set (nothing is cached).
+std::filesystem::path cacheDirectory();
+
+// 64-bit FNV-1a, continued from `seed`: a content key, not a checksum against tampering.
+std::uint64_t contentHash(std::string_view bytes, std::uint64_t seed = 0xcbf29ce484222325ull);
+std::uint64_t contentHash(const std::vector<float>& values, std::uint64_t seed = 0xcbf29ce484222325ull);
+
+// True, with `out` filled, when the cache holds `name` with exactly out.size() floats.
+bool loadCachedFloats(const std::string& name, std::vector<float>& out);
+
+// Stores `values` as `name`. A read-only or full cache only costs the next run a recompute, so
+// failures are silent.
+void storeCachedFloats(const std::string& name, const std::vector<float>& values);
+
+}  // namespace brdfcl::detail
