@@ -12,13 +12,28 @@
 
 namespace brdfcl {
 
-// Materials of a glTF 2.0 document, or of any JSON object with a top-level "materials" array.
+// Materials of a glTF 2.0 document (.gltf JSON, or a .glb, whose JSON chunk is read after its
+// header is checked), or of any JSON object with a top-level "materials" array.
 // KHR_materials_sheen is the draft when it has intensityFactor, colorFactor or
 // colorIntensityTexture, the ratified extension otherwise; mixing the two key families is an
 // error. Values are checked against the glTF schema ranges; errors name the file and the JSON
 // path ("m.json: materials[2].pbrMetallicRoughness.roughnessFactor: ..."). Texture references
-// are ignored with one warning per material, passed to `warn` (if set). Unknown extensions are
-// ignored silently.
+// are ignored with one warning per material, passed to `warn` (if set).
+// A typo must not silently leave a factor at its default, so these get one warning each, with
+// the JSON path and "did you mean <key>?" when a known key is near: unknown keys of a material,
+// of pbrMetallicRoughness, of KHR_materials_{sheen,clearcoat,anisotropy} and of their
+// textureInfo objects; unknown KHR_/EXT_ extension names; and the ratified KHR_materials_*
+// extensions f leaves out (ior, specular, transmission, ...), each naming what is ignored
+// ("m.json: materials[0].extensions.KHR_materials_ior: ignored: ..."). "extras", vendor
+// extensions and real non-material extensions (KHR_texture_transform) are silent.
+struct MaterialReadOptions {
+  std::function<void(const std::string&)> warn;  // receives each warning line; may be empty
+  bool strict = false;  // the first of those typo warnings is thrown as the Error instead (texture notes stay warnings)
+};
+std::vector<MaterialParams> readMaterials(const std::string& path, const MaterialReadOptions& options);
+std::vector<MaterialParams> parseMaterials(const std::string& jsonText, const std::string& sourceName,
+                                           const MaterialReadOptions& options);
+// The same, not strict.
 std::vector<MaterialParams> readMaterials(const std::string& path,
                                           const std::function<void(const std::string&)>& warn = {});
 std::vector<MaterialParams> parseMaterials(const std::string& jsonText, const std::string& sourceName,
