@@ -47,19 +47,25 @@ struct Samples {
   std::size_t size() const { return L.size() / 3; }
 };
 
-// CSV with header material,Lx,Ly,Lz,Vx,Vy,Vz (or Lx..Vz without material when
-// materialColumnOptional and absent), or .npy float32/float64 of shape (N,7) or (N,6), chosen
-// by the extension (.npy, any case). Rejects short or non-numeric rows, NaN/Inf, zero-length
-// directions, non-integer material indices and, when materialCount != 0, indices >= it.
-// Errors say "s.csv:17: ..." (1-based file lines, the header is line 1) or "s.npy: row 12: ..."
-// (0-based rows, as numpy indexes them). Large files are parsed on several threads.
+// CSV whose header names the columns material,Lx,Ly,Lz,Vx,Vy,Vz in any order (material may be
+// absent when materialColumnOptional), or .npy float32/float64 of shape (N,7) or (N,6) in that
+// column order, chosen by the extension (.npy, any case). Path "-" is stdin ("<stdin>" in
+// messages), NPY when it starts with NPY's magic and CSV otherwise. The header's column order
+// becomes one permutation for the whole file; a missing, unknown (with "did you mean") or
+// repeated column is an error naming it ("s.csv: header: missing column Vz"), and a missing
+// material column without materialColumnOptional suggests --grid. Rejects short or non-numeric
+// rows, NaN/Inf, zero-length directions, non-integer material indices and, when
+// materialCount != 0, indices >= it. Errors say "s.csv:17: ..." (1-based file lines, the
+// header is line 1) or "s.npy: row 12: ..." (0-based rows, as numpy indexes them). Large files
+// are parsed on several threads.
 Samples readSamples(const std::string& path, std::size_t materialCount, bool materialColumnOptional);
 
 // The same files read a chunk at a time, so a file of any size takes bounded memory: the chunk's
 // rows plus one read buffer. Checks, normalization and messages (line and row numbers included)
 // are exactly readSamples's, which is this stream read in one chunk. The header is read and
-// checked by the constructor. Regular files are read with pread and never mapped, so the page
-// cache is not charged to the process; pipes are read whole first (NPY needs to seek).
+// checked by the constructor. Regular files (stdin redirected from one included) are read with
+// pread and never mapped, so the page cache is not charged to the process; pipes are read whole
+// first (NPY needs to seek, and --grid re-reads).
 // Not thread-safe: one thread reads a stream (it parses each chunk on several threads itself).
 class SampleStream {
  public:
