@@ -228,11 +228,12 @@ TEST(MaterialsKeys, FarTyposListWhatIsKnownAndTextureInfosAreChecked) {
                                      "ignored; did you mean KHR_materials_clearcoat?"});
   auto w = warningsOf(doc(R"({"pbrMetallicRoughness": {"baseColorTexture": {"indx": 0,
                                "extensions": {"KHR_texture_transfrom": {}}}}})"));
-  ASSERT_EQ(w.size(), 3u) << ::testing::PrintToString(w);  // the texture note, then two findings
-  EXPECT_EQ(w[1], "m.json: materials[0].pbrMetallicRoughness.baseColorTexture.extensions.KHR_texture_transfrom: "
+  ASSERT_EQ(w.size(), 3u) << ::testing::PrintToString(w);  // two findings, then the texture note
+  EXPECT_EQ(w[0], "m.json: materials[0].pbrMetallicRoughness.baseColorTexture.extensions.KHR_texture_transfrom: "
                   "unknown extension, ignored; did you mean KHR_texture_transform?");
-  EXPECT_EQ(w[2], "m.json: materials[0].pbrMetallicRoughness.baseColorTexture.indx: unknown key, ignored; did you "
+  EXPECT_EQ(w[1], "m.json: materials[0].pbrMetallicRoughness.baseColorTexture.indx: unknown key, ignored; did you "
                   "mean index?");
+  EXPECT_NE(w[2].find("texture references are ignored"), std::string::npos) << w[2];
   w = warningsOf(doc(R"({"roughness": 0.5, "foo": 1})"));
   ASSERT_EQ(w.size(), 2u) << ::testing::PrintToString(w);
   EXPECT_EQ(w[0], "m.json: materials[0].foo: unknown key, ignored (known here: name, pbrMetallicRoughness, "
@@ -434,6 +435,13 @@ TEST_F(InputChecksCli, EvalWarnsOnEachTypoAndStrictMakesItTheError) {
     EXPECT_TRUE(strict.warningLines().empty()) << strict.describe();
     EXPECT_FALSE(fs::exists(dir_.path("o.csv")));
   }
+  // Under --strict the error comes before the texture note: nothing but the error is printed.
+  const std::string textured =
+      write("t.json", doc(R"({"pbrMetallicRoughness": {"metalicFactor": 0, "baseColorTexture": {"index": 0}}})"));
+  const RunResult tr = eval(textured, s, dir_.path("o.csv"), {"--strict"});
+  expectUserError(tr, textured + ": materials[0].pbrMetallicRoughness.metalicFactor: unknown key, ignored; did you "
+                                 "mean metallicFactor?");
+  EXPECT_TRUE(tr.warningLines().empty()) << tr.describe();
   // extras and vendor extensions: silent even under --strict.
   const std::string quiet =
       write("q.json", doc(R"({"extras": {"a": 1}, "extensions": {"ACME_x": {}, "KHR_materials_clearcoat": {"extras": {}}}})"));

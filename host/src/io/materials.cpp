@@ -97,10 +97,13 @@ class MaterialReader {
       if (warn_) warn_(source_ + ": " + finding);
     };
     for (std::size_t i = 0; i < it->size(); ++i) {
-      out.push_back(material((*it)[i], i));
-      // After the material is read, so that a value of the wrong type gets the reader's message.
+      std::string textureNote;
+      out.push_back(material((*it)[i], i, textureNote));
+      // After the material is read, so that a value of the wrong type gets the reader's message;
+      // before the texture note, so that --strict fails with nothing printed first.
       detail::checkMaterialKeys((*it)[i], "materials[" + std::to_string(i) + "]", detail::MaterialKeyReader::MaterialsFile,
                                 report);
+      if (!textureNote.empty()) warn_(textureNote);
     }
     return out;
   }
@@ -160,7 +163,8 @@ class MaterialReader {
       if (obj.contains(key)) found.emplace_back(key);
   }
 
-  MaterialParams material(const json& m, std::size_t index) const {
+  // textureNote: the warning for ignored texture references, or "".
+  MaterialParams material(const json& m, std::size_t index, std::string& textureNote) const {
     const std::string base = "materials[" + std::to_string(index) + "]";
     if (!m.is_object()) fail(base, "expected a material object, got " + describe(m));
 
@@ -213,7 +217,7 @@ class MaterialReader {
       std::string list;
       for (const auto& t : textures) list += (list.empty() ? "" : ", ") + t;
       const std::string who = p.name.empty() ? base : base + " ('" + printable(p.name) + "')";
-      warn_(source_ + ": " + who + ": texture references are ignored (" + list + "); using factors only");
+      textureNote = source_ + ": " + who + ": texture references are ignored (" + list + "); using factors only";
     }
     return p;
   }
