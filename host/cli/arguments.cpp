@@ -2,37 +2,17 @@
 // an unknown one, and "A subcommand is required" for a misspelt subcommand; users need the typo.
 #include "arguments.hpp"
 
-#include <algorithm>
 #include <cctype>
+#include <string_view>
 
 #include <fmt/format.h>
 
 #include "brdfcl/error.hpp"
+#include "host/src/io/messages.hpp"
 
 namespace brdfcl::cli {
 
 namespace {
-// Optimal string alignment distance (Damerau-Levenshtein with adjacent transpositions): one
-// swapped pair of letters, the most common typo, costs 1.
-std::size_t editDistance(const std::string& a, const std::string& b) {
-  const std::size_t n = a.size(), m = b.size();
-  std::vector<std::vector<std::size_t>> d(n + 1, std::vector<std::size_t>(m + 1));
-  for (std::size_t i = 0; i <= n; ++i) d[i][0] = i;
-  for (std::size_t j = 0; j <= m; ++j) d[0][j] = j;
-  for (std::size_t i = 1; i <= n; ++i)
-    for (std::size_t j = 1; j <= m; ++j) {
-      const std::size_t cost = a[i - 1] == b[j - 1] ? 0 : 1;
-      d[i][j] = std::min({d[i - 1][j] + 1, d[i][j - 1] + 1, d[i - 1][j - 1] + cost});
-      if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1]) d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
-    }
-  return d[n][m];
-}
-
-std::string lower(std::string s) {
-  for (auto& c : s) c = char(std::tolower(static_cast<unsigned char>(c)));
-  return s;
-}
-
 std::vector<std::string> subcommandNames(CLI::App& app) {
   std::vector<std::string> names;
   for (const CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) names.push_back(sub->get_name());
@@ -55,20 +35,8 @@ bool isOptionToken(const std::string& t) {
 }  // namespace
 
 std::string closestMatch(const std::string& word, const std::vector<std::string>& candidates) {
-  const std::string w = lower(word);
-  // A third of the word's length, at least one and at most three edits: "evl" finds eval,
-  // "frobnicate" finds nothing.
-  const std::size_t limit = std::clamp<std::size_t>(w.size() / 3, 1, 3);
-  std::string best;
-  std::size_t bestDistance = limit + 1;
-  for (const auto& c : candidates) {
-    const std::size_t d = editDistance(w, lower(c));
-    if (d < bestDistance) {
-      bestDistance = d;
-      best = c;
-    }
-  }
-  return best;
+  const std::vector<std::string_view> views(candidates.begin(), candidates.end());
+  return detail::closestName(word, views);
 }
 
 std::string checkArguments(CLI::App& app, int argc, char** argv) {

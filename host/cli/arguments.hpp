@@ -8,7 +8,7 @@
 
 namespace brdfcl::cli {
 
-// The closest of `candidates` to `word` within a small edit distance (case-insensitive), or "".
+// The closest of `candidates` to `word` (detail::closestName: a small edit distance, any case), or "".
 std::string closestMatch(const std::string& word, const std::vector<std::string>& candidates);
 
 // Throws brdfcl::Error naming the first unknown subcommand or option in argv[1..argc), with a

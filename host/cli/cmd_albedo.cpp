@@ -17,6 +17,7 @@ namespace {
 struct AlbedoArgs {
   std::string device, materials;
   long long material = -1;
+  bool strict = false;
   std::string visibility = "charlie", distribution = "charlie", scaling = "min";
 };
 }  // namespace
@@ -26,6 +27,7 @@ void addAlbedoCommand(CLI::App& app) {
   auto* cmd = app.add_subcommand("albedo", "Print the directional albedo per lobe of the built-in gallery or of your materials");
   cmd->add_option("--materials", args->materials, "glTF 2.0 JSON (or .glb) whose materials to integrate (default: the built-in gallery)");
   cmd->add_option("--material", args->material, "only this material index of --materials (default: all)");
+  cmd->add_flag("--strict", args->strict, "unknown keys and extensions in the materials file are errors, not warnings");
   cmd->add_option("--sheen-visibility", args->visibility, "charlie|ashikhmin (default charlie)");
   cmd->add_option("--sheen-distribution", args->distribution, "charlie|ashikhmin (default charlie)");
   cmd->add_option("--sheen-scaling", args->scaling, "min|view|none (default min)");
@@ -37,12 +39,11 @@ void addAlbedoCommand(CLI::App& app) {
     base.sheenScaling = parseSheenScaling(args->scaling);
     std::vector<MaterialParams> materials;
     if (args->materials.empty()) {
-      if (cmd->count("--material")) throw Error("--material applies to --materials FILE; add --materials");
+      for (const char* o : {"--material", "--strict"})
+        if (cmd->count(o)) throw Error(fmt::format("{} applies to --materials FILE; add --materials", o));
       materials = gallery();
     } else {
-      materials = readMaterials(args->materials, [](const std::string& w) {
-        std::fprintf(stderr, "brdfcl: warning: %s\n", w.c_str());
-      });
+      materials = readUserMaterials(args->materials, args->strict);
       if (materials.empty()) throw Error(fmt::format("{}: the file has no materials", args->materials));
       for (std::size_t m = 0; m < materials.size(); ++m)
         if (materials[m].name.empty()) materials[m].name = fmt::format("materials[{}]", m);

@@ -15,7 +15,7 @@ namespace {
 struct EvalArgs {
   std::string materials, samples, out, device;
   std::string visibility = "charlie", distribution = "charlie", scaling = "min", lobe = "all";
-  bool grid = false;
+  bool grid = false, strict = false;
   long long chunk = static_cast<long long>(StreamOptions::kDefaultChunk);
 };
 }  // namespace
@@ -25,13 +25,15 @@ void addEvalCommand(CLI::App& app) {
   auto* cmd = app.add_subcommand("eval", "Evaluate f(L, V) of glTF materials for a batch of direction pairs");
   cmd->add_option("--materials", args->materials, "glTF 2.0 JSON (or any JSON with a top-level materials array)")
       ->required();
-  cmd->add_option("--samples", args->samples, "CSV material,Lx,Ly,Lz,Vx,Vy,Vz or .npy (N,7)")->required();
+  cmd->add_option("--samples", args->samples, "CSV with columns material,Lx,Ly,Lz,Vx,Vy,Vz in any order, or .npy (N,7); - reads stdin (CSV, or NPY by its magic)")->required();
   cmd->add_option("--out", args->out, "output CSV r,g,b or .npy (N,3) float32")->required();
   cmd->add_option("--sheen-visibility", args->visibility, "charlie|ashikhmin (default charlie)");
   cmd->add_option("--sheen-distribution", args->distribution, "charlie|ashikhmin (default charlie)");
   cmd->add_option("--sheen-scaling", args->scaling, "min|view|none (default min)");
   cmd->add_option("--lobe", args->lobe, "all|diffuse|specular|sheen|clearcoat (default all)");
   cmd->add_flag("--grid", args->grid, "every material x every direction pair, material-major");
+  cmd->add_flag("--strict", args->strict,
+                "unknown keys and extensions in the materials file are errors, not warnings");
   cmd->add_option("--chunk", args->chunk,
                   "samples per chunk (default " + std::to_string(StreamOptions::kDefaultChunk) +
                       "); memory stays bounded by a few chunks whatever the file size");
@@ -46,9 +48,7 @@ void addEvalCommand(CLI::App& app) {
       throw Error("--chunk " + std::to_string(args->chunk) + " is out of range; use 1 to " +
                   std::to_string(StreamOptions::kMaxChunk));
     checkOutputPath("--out", args->out);
-    auto materials = readMaterials(args->materials, [](const std::string& w) {
-      std::fprintf(stderr, "brdfcl: warning: %s\n", w.c_str());
-    });
+    auto materials = readUserMaterials(args->materials, args->strict);
     // The header is checked before the device is set up; rows are checked as they stream.
     SampleStream samples(args->samples, args->grid ? 0 : materials.size(), args->grid);
     Runtime rt(args->device);

@@ -70,16 +70,18 @@ void writeImages(const Image& img, const std::string& exr, const std::string& pn
 struct GltfArgs {
   std::string path, camera, variant, size;
   int scene = -1;
+  bool strict = false;
 
   void add(CLI::App* cmd) {
     cmd->add_option("--gltf", path, "glTF asset (.gltf or .glb) instead of a built-in scene");
+    cmd->add_flag("--strict", strict, "unknown keys and extensions in the glTF materials are errors, not warnings");
     cmd->add_option("--camera", camera, "glTF camera index, or auto (default: the scene's first camera node, else auto)");
     cmd->add_option("--gltf-scene", scene, "glTF scene index (default: the file's default scene)");
     cmd->add_option("--variant", variant, "KHR_materials_variants variant name");
   }
   // Options that only mean something for a glTF asset are refused for the built-in scenes.
   void checkBuiltin(CLI::App* cmd) const {
-    for (const char* o : {"--camera", "--gltf-scene", "--variant"})
+    for (const char* o : {"--camera", "--gltf-scene", "--variant", "--strict"})
       if (cmd->count(o)) throw Error(fmt::format("{} applies to glTF assets; add --gltf FILE", o));
   }
 };
@@ -94,8 +96,9 @@ LoadedAsset loadAsset(const GltfArgs& a) {
   gltf::LoadOptions options;
   options.scene = a.scene;
   options.variant = a.variant;
+  options.strict = a.strict;
   LoadedAsset l{gltf::load(a.path, options), {}, 0, 0};
-  for (const auto& w : l.asset.warnings) std::fprintf(stderr, "brdfcl: warning: %s\n", w.c_str());
+  for (const auto& w : l.asset.warnings) printWarning(w);
   if (a.size.empty())
     gltf::defaultSize(l.asset, a.camera, l.width, l.height);
   else

@@ -3,6 +3,11 @@
 #pragma once
 #include <CLI/CLI.hpp>
 
+#include <string>
+#include <vector>
+
+#include "brdfcl/material.hpp"
+
 namespace brdfcl::cli {
 
 void addDevicesCommand(CLI::App& app);
@@ -11,5 +16,10 @@ void addAlbedoCommand(CLI::App& app);
 void addRenderCommands(CLI::App& app);
 void addBenchCommand(CLI::App& app);
 void addLutCommand(CLI::App& app);
+
+// "brdfcl: warning: <text>" on stderr: the one form every command warns in.
+void printWarning(const std::string& text);
+// The user's materials file read as eval and albedo read it: warnings printed, --strict honoured.
+std::vector<MaterialParams> readUserMaterials(const std::string& path, bool strict);
 
 }  // namespace brdfcl::cli

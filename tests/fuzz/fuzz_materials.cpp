@@ -12,6 +12,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::string& path = file.write(data, size);
   // The warning text is built only when there is a callback; keep it in the fuzzed paths.
   std::size_t warnings = 0;
-  brdfcl::fuzz::expectCleanRefusal([&] { brdfcl::readMaterials(path, [&](const std::string&) { ++warnings; }); });
+  brdfcl::MaterialReadOptions options;
+  options.warn = [&](const std::string&) { ++warnings; };
+  options.strict = size % 2 == 1;  // a typo's two outcomes: the warning and the error
+  brdfcl::fuzz::expectCleanRefusal([&] { brdfcl::readMaterials(path, options); });
   return 0;
 }

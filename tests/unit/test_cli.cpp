@@ -676,7 +676,7 @@ TEST_F(Cli, BadInputIsOneLineErrorAndLeavesNoOutput) {
       {"missing header", {{"nohdr.csv", "1,0.25,0.5,1,0,0.125,1\n"}}, "m.json", "nohdr.csv", "o.csv", {},
        {"nohdr.csv:1:"}},
       {"no material column without --grid", {{"six.csv", "Lx,Ly,Lz,Vx,Vy,Vz\n0.25,0.5,1,0,0.125,1\n"}}, "m.json",
-       "six.csv", "o.csv", {}, {"six.csv:1:"}},
+       "six.csv", "o.csv", {}, {"six.csv: header: missing column material", "--grid"}},
       // Samples NPY (rows are 0-based, as numpy indexes them).
       {"NPY NaN", {{"nan.npy", npyWithRow({0, 0.25, nan, 1, 0, 0.125, 1}, 2, true)}}, "m.json", "nan.npy", "o.csv", {},
        {"nan.npy", "row 2"}},

@@ -145,6 +145,9 @@ struct Asset {
 struct LoadOptions {
   int scene = -1;       // -1 = the file's default scene, else scene 0
   std::string variant;  // KHR_materials_variants name; "" = the default materials
+  // Unknown keys and KHR_/EXT_ names in materials (typos: checkMaterialKeys) are warnings in
+  // Asset::warnings; strict makes the first of them the load's Error instead.
+  bool strict = false;
   // Bounds against hostile files, checked before allocating (the fuzz harness lowers them): the
   // world-space vertices plus triangles of all primitives together, and the pixels of one image.
   std::size_t maxElements = std::size_t(1) << 28;

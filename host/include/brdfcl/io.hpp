@@ -12,13 +12,28 @@
 
 namespace brdfcl {
 
-// Materials of a glTF 2.0 document, or of any JSON object with a top-level "materials" array.
+// Materials of a glTF 2.0 document (.gltf JSON, or a .glb, whose JSON chunk is read after its
+// header is checked), or of any JSON object with a top-level "materials" array.
 // KHR_materials_sheen is the draft when it has intensityFactor, colorFactor or
 // colorIntensityTexture, the ratified extension otherwise; mixing the two key families is an
 // error. Values are checked against the glTF schema ranges; errors name the file and the JSON
 // path ("m.json: materials[2].pbrMetallicRoughness.roughnessFactor: ..."). Texture references
-// are ignored with one warning per material, passed to `warn` (if set). Unknown extensions are
-// ignored silently.
+// are ignored with one warning per material, passed to `warn` (if set).
+// A typo must not silently leave a factor at its default, so these get one warning each, with
+// the JSON path and "did you mean <key>?" when a known key is near: unknown keys of a material,
+// of pbrMetallicRoughness, of KHR_materials_{sheen,clearcoat,anisotropy} and of their
+// textureInfo objects; unknown KHR_/EXT_ extension names; and the ratified KHR_materials_*
+// extensions f leaves out (ior, specular, transmission, ...), each naming what is ignored
+// ("m.json: materials[0].extensions.KHR_materials_ior: ignored: ..."). "extras", vendor
+// extensions and real non-material extensions (KHR_texture_transform) are silent.
+struct MaterialReadOptions {
+  std::function<void(const std::string&)> warn;  // receives each warning line; may be empty
+  bool strict = false;  // the first of those typo warnings is thrown as the Error instead (texture notes stay warnings)
+};
+std::vector<MaterialParams> readMaterials(const std::string& path, const MaterialReadOptions& options);
+std::vector<MaterialParams> parseMaterials(const std::string& jsonText, const std::string& sourceName,
+                                           const MaterialReadOptions& options);
+// The same, not strict.
 std::vector<MaterialParams> readMaterials(const std::string& path,
                                           const std::function<void(const std::string&)>& warn = {});
 std::vector<MaterialParams> parseMaterials(const std::string& jsonText, const std::string& sourceName,
@@ -32,19 +47,25 @@ struct Samples {
   std::size_t size() const { return L.size() / 3; }
 };
 
-// CSV with header material,Lx,Ly,Lz,Vx,Vy,Vz (or Lx..Vz without material when
-// materialColumnOptional and absent), or .npy float32/float64 of shape (N,7) or (N,6), chosen
-// by the extension (.npy, any case). Rejects short or non-numeric rows, NaN/Inf, zero-length
-// directions, non-integer material indices and, when materialCount != 0, indices >= it.
-// Errors say "s.csv:17: ..." (1-based file lines, the header is line 1) or "s.npy: row 12: ..."
-// (0-based rows, as numpy indexes them). Large files are parsed on several threads.
+// CSV whose header names the columns material,Lx,Ly,Lz,Vx,Vy,Vz in any order (material may be
+// absent when materialColumnOptional), or .npy float32/float64 of shape (N,7) or (N,6) in that
+// column order, chosen by the extension (.npy, any case). Path "-" is stdin ("<stdin>" in
+// messages), NPY when it starts with NPY's magic and CSV otherwise. The header's column order
+// becomes one permutation for the whole file; a missing, unknown (with "did you mean") or
+// repeated column is an error naming it ("s.csv: header: missing column Vz"), and a missing
+// material column without materialColumnOptional suggests --grid. Rejects short or non-numeric
+// rows, NaN/Inf, zero-length directions, non-integer material indices and, when
+// materialCount != 0, indices >= it. Errors say "s.csv:17: ..." (1-based file lines, the
+// header is line 1) or "s.npy: row 12: ..." (0-based rows, as numpy indexes them). Large files
+// are parsed on several threads.
 Samples readSamples(const std::string& path, std::size_t materialCount, bool materialColumnOptional);
 
 // The same files read a chunk at a time, so a file of any size takes bounded memory: the chunk's
 // rows plus one read buffer. Checks, normalization and messages (line and row numbers included)
 // are exactly readSamples's, which is this stream read in one chunk. The header is read and
-// checked by the constructor. Regular files are read with pread and never mapped, so the page
-// cache is not charged to the process; pipes are read whole first (NPY needs to seek).
+// checked by the constructor. Regular files (stdin redirected from one included) are read with
+// pread and never mapped, so the page cache is not charged to the process; pipes are read whole
+// first (NPY needs to seek, and --grid re-reads).
 // Not thread-safe: one thread reads a stream (it parses each chunk on several threads itself).
 class SampleStream {
  public:

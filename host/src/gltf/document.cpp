@@ -8,6 +8,7 @@
 
 #include "brdfcl/error.hpp"
 #include "io/messages.hpp"
+#include "model/material_keys.hpp"
 
 namespace brdfcl::gltf::detail {
 namespace {
@@ -220,12 +221,20 @@ TextureRef Document::textureRef(const json& obj, const char* key, const std::str
   return ref;
 }
 
-std::vector<Material> Document::materials(std::size_t textureCount) const {
+std::vector<Material> Document::materials(std::size_t textureCount, std::vector<std::string>& warnings,
+                                         bool strict) const {
   std::vector<Material> out;
   const json* list = member(doc_, "materials");
   if (!list || !list->is_array()) return out;
-  for (std::size_t i = 0; i < list->size(); ++i)
+  const auto report = [&](const std::string& finding) {
+    if (strict) throw Error(source_ + ": " + finding);
+    warnings.push_back(source_ + ": " + finding);
+  };
+  for (std::size_t i = 0; i < list->size(); ++i) {
     out.push_back(material(object((*list)[i], at("materials", i)), at("materials", i), textureCount));
+    brdfcl::detail::checkMaterialKeys((*list)[i], at("materials", i), brdfcl::detail::MaterialKeyReader::GltfAsset,
+                                      report);
+  }
   return out;
 }
 

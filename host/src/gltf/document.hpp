@@ -24,7 +24,8 @@ class Document {
   bool ktx2WithoutFallback() const;
   std::vector<Sampler> samplers() const;
   std::vector<Texture> textures(std::size_t imageCount, std::size_t samplerCount) const;
-  std::vector<Material> materials(std::size_t textureCount) const;
+  // Keys brdfcl does not know (typos) go to `warnings`, or are the Error when `strict`.
+  std::vector<Material> materials(std::size_t textureCount, std::vector<std::string>& warnings, bool strict) const;
   std::vector<std::string> variants() const;
   // The material of meshes[mesh].primitives[prim] under variant `variant` (-1 = none), else `fallback`.
   int variantMaterial(std::size_t mesh, std::size_t prim, int variant, int fallback) const;

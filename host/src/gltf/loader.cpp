@@ -21,6 +21,7 @@
 #include "gltf/meshopt.hpp"
 #include "gltf/tangents.hpp"
 #include "io/files.hpp"
+#include "io/glb.hpp"
 #include "io/messages.hpp"
 
 namespace brdfcl::gltf {
@@ -29,8 +30,8 @@ namespace {
 using json = nlohmann::json;
 using brdfcl::detail::printable;
 
-constexpr std::uint32_t kGlbMagic = 0x46546C67;  // "glTF"
-constexpr std::uint32_t kChunkJson = 0x4E4F534A, kChunkBin = 0x004E4942;
+using brdfcl::detail::kGlbMagic;
+using brdfcl::detail::le32;
 
 std::string at(const char* kind, std::size_t i) { return std::string(kind) + "[" + std::to_string(i) + "]"; }
 
@@ -51,48 +52,7 @@ struct Context {
   }
 };
 
-std::uint32_t le32(const std::string& b, std::size_t at) {
-  return std::uint32_t(std::uint8_t(b[at])) | std::uint32_t(std::uint8_t(b[at + 1])) << 8 |
-         std::uint32_t(std::uint8_t(b[at + 2])) << 16 | std::uint32_t(std::uint8_t(b[at + 3])) << 24;
-}
-
-// The GLB container, checked completely (tinygltf trusts the BIN chunk's length); returns the
-// JSON chunk and sets binSize (0 when there is no BIN chunk).
-std::string glbJson(const std::string& b, const std::string& source, std::size_t& binSize) {
-  auto bad = [&](const std::string& what) { throw Error(source + ": " + what); };
-  if (b.size() < 12) bad("truncated GLB file (" + std::to_string(b.size()) + " bytes, shorter than the 12-byte header); re-export the file");
-  if (le32(b, 4) != 2)
-    bad("unsupported GLB version " + std::to_string(le32(b, 4)) + "; brdfcl reads glTF 2.0 binaries (version 2)");
-  const std::uint64_t length = le32(b, 8);
-  if (length > b.size())
-    bad("truncated GLB file: the header says " + std::to_string(length) + " bytes, the file has " +
-        std::to_string(b.size()) + "; download or export it again");
-  if (length < b.size())
-    bad("the GLB header says " + std::to_string(length) + " bytes, but the file has " + std::to_string(b.size()) +
-        "; re-export the file");
-  if (length < 20) bad("truncated GLB file: no room for the JSON chunk; re-export the file");
-  const std::uint64_t jsonLength = le32(b, 12);
-  if (le32(b, 16) != kChunkJson) bad("GLB chunk 0 is not JSON; re-export the file");
-  if (jsonLength == 0 || 20 + jsonLength > length)
-    bad("truncated GLB chunk 0 (JSON): it claims " + std::to_string(jsonLength) + " bytes, " +
-        std::to_string(length - 20) + " remain; re-export the file");
-  const std::uint64_t next = 20 + jsonLength;
-  binSize = 0;
-  if (next < length) {
-    if (length - next < 8) bad("truncated GLB chunk 1: its 8-byte header is cut off; re-export the file");
-    const std::uint64_t binLength = le32(b, std::size_t(next));
-    if (le32(b, std::size_t(next + 4)) != kChunkBin) bad("GLB chunk 1 is not BIN; re-export the file");
-    if (binLength > length - next - 8)
-      bad("truncated GLB chunk 1 (BIN): it claims " + std::to_string(binLength) + " bytes, " +
-          std::to_string(length - next - 8) + " remain; re-export the file");
-    if (binLength < 4 || binLength % 4 != 0)
-      bad("GLB chunk 1 (BIN) has " + std::to_string(binLength) + " bytes, not a non-zero multiple of 4; re-export the file");
-    binSize = std::size_t(binLength);
-  }
-  return b.substr(20, std::size_t(jsonLength));
-}
-
-// The GLB `b` (checked by glbJson) with its JSON chunk replaced by `text`, the BIN chunk kept.
+// The GLB `b` (checked by glbJsonChunk) with its JSON chunk replaced by `text`, the BIN chunk kept.
 std::string withJsonChunk(const std::string& b, std::string text) {
   while (text.size() % 4) text += ' ';
   const std::string rest = b.substr(20 + std::size_t(le32(b, 12)));
@@ -328,7 +288,7 @@ Asset loadFromMemory(const std::string& bytes, const std::string& name, const st
   if (bytes.size() > 0xFFFFFFF0u) throw Error(ctx.source + ": the file is larger than 4 GiB; brdfcl reads glTF files up to 4 GiB");
   const bool glb = bytes.size() >= 4 && le32(bytes, 0) == kGlbMagic;
   std::size_t binSize = 0;
-  const json doc = parseJson(glb ? glbJson(bytes, ctx.source, binSize) : bytes, ctx.source);
+  const json doc = parseJson(glb ? brdfcl::detail::glbJsonChunk(bytes, ctx.source, binSize) : bytes, ctx.source);
   Asset asset;
   asset.path = name;
   const detail::Document document(doc, ctx.source);
@@ -367,7 +327,7 @@ Asset loadFromMemory(const std::string& bytes, const std::string& name, const st
   asset.samplers = document.samplers();
   asset.images = std::move(ctx.images);
   asset.textures = document.textures(asset.images.size(), asset.samplers.size());
-  asset.materials = document.materials(asset.textures.size());
+  asset.materials = document.materials(asset.textures.size(), asset.warnings, options.strict);
   asset.variants = document.variants();
   detail::buildScene(model, document, options, asset);
   return asset;

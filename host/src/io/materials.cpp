@@ -1,6 +1,7 @@
 // readMaterials/parseMaterials: glTF 2.0 materials (core metallic-roughness, KHR_materials_sheen
 // ratified or draft, KHR_materials_clearcoat, KHR_materials_anisotropy) into MaterialParams.
-// Every rejection is one line naming the file and the JSON path of the offending key.
+// Every rejection is one line naming the file and the JSON path of the offending key; keys it
+// does not read are reported by checkMaterialKeys (model/material_keys.hpp), shared with the glTF loader.
 #include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -18,7 +19,9 @@
 #include <vector>
 
 #include "io/files.hpp"
+#include "io/glb.hpp"
 #include "io/messages.hpp"
+#include "model/material_keys.hpp"
 #include "brdfcl/error.hpp"
 #include "brdfcl/io.hpp"
 #include "brdfcl/material.hpp"
@@ -52,7 +55,8 @@ const char* expectedNumber(Range r) {
 
 class MaterialReader {
  public:
-  MaterialReader(const std::string& source, const Warn& warn) : source_(printable(source, 300)), warn_(warn) {}
+  MaterialReader(const std::string& source, const MaterialReadOptions& options)
+      : source_(printable(source, 300)), warn_(options.warn), strict_(options.strict) {}
 
   std::vector<MaterialParams> read(const std::string& text) {
     json doc;
@@ -88,7 +92,19 @@ class MaterialReader {
 
     std::vector<MaterialParams> out;
     out.reserve(it->size());
-    for (std::size_t i = 0; i < it->size(); ++i) out.push_back(material((*it)[i], i));
+    const auto report = [&](const std::string& finding) {
+      if (strict_) throw Error(source_ + ": " + finding);
+      if (warn_) warn_(source_ + ": " + finding);
+    };
+    for (std::size_t i = 0; i < it->size(); ++i) {
+      std::string textureNote;
+      out.push_back(material((*it)[i], i, textureNote));
+      // After the material is read, so that a value of the wrong type gets the reader's message;
+      // before the texture note, so that --strict fails with nothing printed first.
+      detail::checkMaterialKeys((*it)[i], "materials[" + std::to_string(i) + "]", detail::MaterialKeyReader::MaterialsFile,
+                                report);
+      if (!textureNote.empty()) warn_(textureNote);
+    }
     return out;
   }
 
@@ -147,7 +163,8 @@ class MaterialReader {
       if (obj.contains(key)) found.emplace_back(key);
   }
 
-  MaterialParams material(const json& m, std::size_t index) const {
+  // textureNote: the warning for ignored texture references, or "".
+  MaterialParams material(const json& m, std::size_t index, std::string& textureNote) const {
     const std::string base = "materials[" + std::to_string(index) + "]";
     if (!m.is_object()) fail(base, "expected a material object, got " + describe(m));
 
@@ -192,14 +209,15 @@ class MaterialReader {
                  [&](const json& v, const std::string& at) { p.anisotropyRotation = number(v, at, Range::Finite); });
         noteTextures(*an, {"anisotropyTexture"}, textures);
       }
-      // Other extensions (transmission, volume, ...) are not part of this BRDF: ignored silently.
+      // Other extensions (transmission, volume, ...) are not part of this BRDF: checkMaterialKeys
+      // names what each would have changed.
     }
 
     if (!textures.empty() && warn_) {
       std::string list;
       for (const auto& t : textures) list += (list.empty() ? "" : ", ") + t;
       const std::string who = p.name.empty() ? base : base + " ('" + printable(p.name) + "')";
-      warn_(source_ + ": " + who + ": texture references are ignored (" + list + "); using factors only");
+      textureNote = source_ + ": " + who + ": texture references are ignored (" + list + "); using factors only";
     }
     return p;
   }
@@ -241,20 +259,37 @@ class MaterialReader {
 
   const std::string source_;
   const Warn& warn_;
+  const bool strict_;
 };
 
 }  // namespace
 
 std::vector<MaterialParams> parseMaterials(const std::string& jsonText, const std::string& sourceName,
-                                           const Warn& warn) {
-  return MaterialReader(sourceName, warn).read(jsonText);
+                                           const MaterialReadOptions& options) {
+  return MaterialReader(sourceName, options).read(jsonText);
 }
 
-std::vector<MaterialParams> readMaterials(const std::string& path, const Warn& warn) {
+std::vector<MaterialParams> parseMaterials(const std::string& jsonText, const std::string& sourceName,
+                                           const Warn& warn) {
+  return parseMaterials(jsonText, sourceName, MaterialReadOptions{warn, false});
+}
+
+std::vector<MaterialParams> readMaterials(const std::string& path, const MaterialReadOptions& options) {
   std::string text;
   if (const int err = detail::readWholeFile(path, text))
     throw Error("cannot read materials file '" + printable(path, 300) + "': " + std::strerror(err));
-  return parseMaterials(text, path, warn);
+  // A .glb holds the same JSON in its first chunk; the magic decides, not the name.
+  if (detail::hasGlbMagic(text)) {
+    std::size_t binSize = 0;
+    text = detail::glbJsonChunk(text, printable(path, 300), binSize);
+  } else if (path.size() >= 4 && path.compare(path.size() - 4, 4, ".glb") == 0) {
+    throw Error(printable(path, 300) + ": not a GLB file (no glTF magic number); a .glb must start with 'glTF'");
+  }
+  return parseMaterials(text, path, options);
+}
+
+std::vector<MaterialParams> readMaterials(const std::string& path, const Warn& warn) {
+  return readMaterials(path, MaterialReadOptions{warn, false});
 }
 
 }  // namespace brdfcl

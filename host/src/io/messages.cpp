@@ -1,6 +1,8 @@
 // One-line message helpers for the readers of user files (see messages.hpp).
 #include "io/messages.hpp"
 
+#include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <cmath>
 
@@ -63,6 +65,47 @@ std::string withoutJsonTag(std::string what) {
   const auto tag = what.find("] ");
   if (what.rfind("[json.exception", 0) == 0 && tag != std::string::npos) what.erase(0, tag + 2);
   return what;
+}
+
+namespace {
+std::size_t osaDistance(std::string_view a, std::string_view b) {
+  const auto lower = [](char c) { return static_cast<char>(std::tolower(static_cast<unsigned char>(c))); };
+  const std::size_t n = a.size(), m = b.size();
+  std::vector<std::size_t> d((n + 1) * (m + 1));
+  const auto at = [&](std::size_t i, std::size_t j) -> std::size_t& { return d[i * (m + 1) + j]; };
+  for (std::size_t i = 0; i <= n; ++i) at(i, 0) = i;
+  for (std::size_t j = 0; j <= m; ++j) at(0, j) = j;
+  for (std::size_t i = 1; i <= n; ++i)
+    for (std::size_t j = 1; j <= m; ++j) {
+      const std::size_t cost = lower(a[i - 1]) == lower(b[j - 1]) ? 0 : 1;
+      at(i, j) = std::min({at(i - 1, j) + 1, at(i, j - 1) + 1, at(i - 1, j - 1) + cost});
+      if (i > 1 && j > 1 && lower(a[i - 1]) == lower(b[j - 2]) && lower(a[i - 2]) == lower(b[j - 1]))
+        at(i, j) = std::min(at(i, j), at(i - 2, j - 2) + 1);
+    }
+  return at(n, m);
+}
+}  // namespace
+
+std::string closestName(std::string_view word, const std::vector<std::string_view>& candidates) {
+  if (word.size() > 200) return {};  // hostile keys: the table is quadratic
+  const auto lower = [](char c) { return std::tolower(static_cast<unsigned char>(c)); };
+  std::string_view best;
+  std::size_t bestDistance = 0;
+  for (const std::string_view c : candidates) {
+    // The allowance scales with what differs after the shared start, so that a long common
+    // prefix (KHR_materials_) does not make far names "near".
+    std::size_t common = 0;
+    while (common < word.size() && common < c.size() && lower(word[common]) == lower(c[common])) ++common;
+    const std::size_t dist = osaDistance(word, c);
+    // A dropped suffix ("clearcoatRoughness" for clearcoatRoughnessFactor) is a typo too.
+    const bool truncated = common == std::min(word.size(), c.size()) && 2 * common >= std::max(word.size(), c.size());
+    if (!truncated && dist > std::max<std::size_t>(1, (c.size() - common) / 3)) continue;
+    if (best.empty() || dist < bestDistance) {
+      best = c;
+      bestDistance = dist;
+    }
+  }
+  return std::string(best);
 }
 
 }  // namespace brdfcl::detail

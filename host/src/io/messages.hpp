@@ -4,6 +4,7 @@
 #include <cstddef>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include <nlohmann/json_fwd.hpp>
 
@@ -24,5 +25,11 @@ std::string withUserPath(std::string what, const std::string& tmpPath, const std
 
 // nlohmann's parse error without its "[json.exception.parse_error.101] " tag.
 std::string withoutJsonTag(std::string what);
+
+// For "did you mean ...": the candidate nearest to `word` by Damerau (optimal string alignment)
+// distance, ignoring ASCII case, when that distance is at most a third of the length of what
+// follows their common start (at least 1), or when one is the other cut short to no less than
+// half; "" when none is that near, so that far names get no far-fetched suggestions.
+std::string closestName(std::string_view word, const std::vector<std::string_view>& candidates);
 
 }  // namespace brdfcl::detail

@@ -1,5 +1,6 @@
-// Sample input: CSV or .npy rows of material, L, V, read whole (readSamples) or a chunk at a time
-// (SampleStream) with the same checks and messages. Regular files are read with pread into one
+// Sample input: CSV (columns in any order, by header name) or .npy rows of material, L, V, from a
+// file or stdin ("-"), read whole (readSamples) or a chunk at a time (SampleStream) with the same
+// checks and messages. Regular files are read with pread into one
 // reusable buffer, never mapped; each chunk is parsed on several threads, without per-row allocation.
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -37,19 +38,28 @@ using detail::workerCount;
 constexpr const char* kColumns[7] = {"material", "Lx", "Ly", "Lz", "Vx", "Vy", "Vz"};
 constexpr const char* kHeaderWithMaterial = "material,Lx,Ly,Lz,Vx,Vy,Vz";
 constexpr const char* kHeaderWithoutMaterial = "Lx,Ly,Lz,Vx,Vy,Vz";
+constexpr const char* kGridHint = "pass --grid to evaluate every material at each direction pair";
+
+// "-" is stdin, in every message too.
+std::string displayName(const std::string& path) { return path == "-" ? "<stdin>" : printable(path, 300); }
 
 // The bytes of the samples file. A regular file is read on demand with pread, so memory stays
 // bounded by what the caller asks for; pipes and /proc files (st_size 0, no seeking) are read
 // whole at once, as a one-shot reader would have to anyway.
 class Source {
  public:
-  explicit Source(const std::string& path) : name_(printable(path, 300)) {
-    fd_ = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  explicit Source(const std::string& path) : name_(displayName(path)) {
+    // stdin redirected from a regular file streams like that file; a pipe is read whole below.
+    if (path == "-") {
+      fd_ = STDIN_FILENO;
+      ownsFd_ = false;
+    } else {
+      fd_ = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+    }
     if (fd_ < 0) fail(errno);
     // The destructor does not run when the constructor throws: close before failing.
     const auto failOpen = [this](int err) {
-      ::close(fd_);
-      fd_ = -1;
+      release();
       fail(err);
     };
     struct stat st {};
@@ -70,12 +80,9 @@ class Source {
     }
     whole_.resize(used);
     size_ = used;
-    ::close(fd_);
-    fd_ = -1;
+    release();
   }
-  ~Source() {
-    if (fd_ >= 0) ::close(fd_);
-  }
+  ~Source() { release(); }
   Source(const Source&) = delete;
   Source& operator=(const Source&) = delete;
 
@@ -105,8 +112,14 @@ class Source {
     throw Error("cannot read samples file '" + name_ + "': " + std::strerror(err));
   }
 
+  void release() {
+    if (fd_ >= 0 && ownsFd_) ::close(fd_);
+    fd_ = -1;
+  }
+
   std::string name_;
   int fd_ = -1;
+  bool ownsFd_ = true;
   std::string whole_;
   std::size_t size_ = 0;
 };
@@ -254,10 +267,13 @@ std::size_t countLines(const char* p, const char* end) {
   return n + (p < end && end[-1] != '\n' ? 1 : 0);
 }
 
+// The file's columns: a permutation fixed by the header, so rows in any column order cost one
+// indexed store per field.
 struct CsvLayout {
-  int fields;
-  const char* const* names;
-  const char* header;
+  int fields = 0;
+  const char* names[7] = {};  // in the file's order
+  int slot[7] = {};           // where field k goes among the RowChecker's values
+  std::string header;         // the names, comma-separated, for messages
 };
 
 std::string emptyLineMessage(const CsvLayout& layout) {
@@ -290,10 +306,11 @@ std::size_t parseCsvLines(const char* p, const char* end, const char* chunkEnd, 
       return fail("expected " + std::to_string(layout.fields) + " fields (" + layout.header + "), got " +
                   std::to_string(countFields(text)));
     for (int k = 0; k < layout.fields; ++k) {
-      if (!parseDouble(fields[k], values[k]))
+      double& value = values[layout.slot[k]];
+      if (!parseDouble(fields[k], value))
         return fail(std::string("field '") + layout.names[k] + "' is not a number: '" + printable(trim(fields[k])) +
                     "'");
-      if (!std::isfinite(values[k]))
+      if (!std::isfinite(value))
         return fail(std::string("field '") + layout.names[k] + "' is not finite: '" + printable(trim(fields[k])) + "'");
     }
     std::string problem = checker.set(firstRow + line, values);
@@ -352,33 +369,52 @@ class CsvReader {
     if (!line.empty() && line.back() == '\n') line.remove_suffix(1);
     if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
 
+    const std::size_t firstComma = line.find(',');
+    double ignored;
+    if (parseDouble(line.substr(0, firstComma == std::string_view::npos ? line.size() : firstComma), ignored))
+      throw Error(name_ + ":1: missing header; the first line must be " + expectedHeader);
+
+    // Columns are found by name, so any order works; the permutation is fixed here, once.
     // R's write.csv and some spreadsheets quote the column names, never the numbers.
-    const auto nameIs = [](std::string_view field, const char* expected) {
-      field = trim(field);
+    int column[7] = {-1, -1, -1, -1, -1, -1, -1};  // canonical column -> field
+    std::size_t pos = 0;
+    for (int k = 0;; ++k) {
+      const std::size_t comma = line.find(',', pos);
+      std::string_view field = trim(line.substr(pos, comma == std::string_view::npos ? std::string_view::npos : comma - pos));
       if (field.size() >= 2 && field.front() == '"' && field.back() == '"') field = field.substr(1, field.size() - 2);
-      return field == expected;
-    };
-    std::string_view header[7];
-    bool hasMaterial = false;
-    bool headerOk = false;
-    if (splitFields(line, header, 7)) {
-      headerOk = true;
-      for (int k = 0; k < 7; ++k) headerOk = headerOk && nameIs(header[k], kColumns[k]);
-      hasMaterial = true;
-    } else if (optional && splitFields(line, header, 6)) {
-      headerOk = true;
-      for (int k = 0; k < 6; ++k) headerOk = headerOk && nameIs(header[k], kColumns[k + 1]);
+      const auto known = std::find(std::begin(kColumns), std::end(kColumns), field);
+      if (known == std::end(kColumns)) {
+        const std::string near = detail::closestName(field, std::vector<std::string_view>(std::begin(kColumns), std::end(kColumns)));
+        throw Error(name_ + ": header: unknown column '" + printable(field) + "' (column " + std::to_string(k + 1) +
+                    ")" + (near.empty() ? "; " : "; did you mean " + near + "? ") + "the columns are " +
+                    kHeaderWithMaterial + " in any order");
+      }
+      const int c = static_cast<int>(known - std::begin(kColumns));
+      if (column[c] >= 0)
+        throw Error(name_ + ": header: column '" + kColumns[c] + "' appears twice (columns " +
+                    std::to_string(column[c] + 1) + " and " + std::to_string(k + 1) + ")");
+      column[c] = k;
+      if (comma == std::string_view::npos) break;
+      pos = comma + 1;
     }
-    if (!headerOk) {
-      const std::size_t comma = line.find(',');
-      double ignored;
-      const bool looksLikeData =
-          parseDouble(line.substr(0, comma == std::string_view::npos ? line.size() : comma), ignored);
-      throw Error(name_ + ":1: " + (looksLikeData ? "missing header" : "bad header '" + printable(line) + "'") +
-                  "; the first line must be " + expectedHeader);
+    std::string missing;
+    int missingCount = 0;
+    for (int c = optional ? 1 : 0; c < 7; ++c)
+      if (column[c] < 0) {
+        missing += (missing.empty() ? "" : ", ") + std::string(kColumns[c]);
+        ++missingCount;
+      }
+    if (missingCount > 0)
+      throw Error(name_ + ": header: missing column" + (missingCount > 1 ? "s " : " ") + missing +
+                  (column[0] < 0 ? std::string("; add it, or ") + kGridHint : std::string()));
+    const bool hasMaterial = column[0] >= 0;
+    layout_.fields = hasMaterial ? 7 : 6;
+    for (int c = hasMaterial ? 0 : 1; c < 7; ++c) {
+      const int k = column[c];
+      layout_.names[k] = kColumns[c];
+      layout_.slot[k] = hasMaterial ? c : c - 1;
     }
-    layout_ = CsvLayout{hasMaterial ? 7 : 6, hasMaterial ? kColumns : kColumns + 1,
-                        hasMaterial ? kHeaderWithMaterial : kHeaderWithoutMaterial};
+    for (int k = 0; k < layout_.fields; ++k) layout_.header += (k ? "," : "") + std::string(layout_.names[k]);
     begin_ = cut;
     bodyOffset_ = offset_ - (end_ - begin_);
   }
@@ -743,7 +779,10 @@ class NpyReader {
     if (!shapeOk)
       throw Error(name_ + ": expected shape (N, 7) with columns " + kHeaderWithMaterial +
                   (optional ? std::string(" or (N, 6) with columns ") + kHeaderWithoutMaterial : std::string()) +
-                  ", got " + shapeText(h.shape));
+                  ", got " + shapeText(h.shape) +
+                  (!optional && h.shape.size() == 2 && h.shape[1] == 6
+                       ? std::string("; without the material column, ") + kGridHint
+                       : std::string()));
     cols_ = static_cast<int>(h.shape[1]);
     fortran_ = h.fortranOrder;
     if (h.shape[0] == 0) throw Error(name_ + ": no samples (shape " + shapeText(h.shape) + ")");
@@ -778,8 +817,13 @@ struct SampleStream::Impl {
 
 SampleStream::SampleStream(const std::string& path, std::size_t materialCount, bool materialColumnOptional)
     : impl_(std::make_unique<Impl>(path)) {
-  const std::string name = printable(path, 300);
-  if (detail::hasNpyExtension(path))
+  const std::string name = displayName(path);
+  // stdin has no extension: NPY's magic tells it from CSV (whose header cannot start with 0x93).
+  char magic[6] = {};
+  const bool npy = path == "-" ? impl_->source.readAt(0, magic, sizeof magic) == sizeof magic &&
+                                     std::memcmp(magic, "\x93NUMPY", 6) == 0
+                               : detail::hasNpyExtension(path);
+  if (npy)
     impl_->npy = std::make_unique<NpyReader>(impl_->source, name, materialCount, materialColumnOptional);
   else
     impl_->csv = std::make_unique<CsvReader>(impl_->source, name, materialCount, materialColumnOptional);
