@@ -26,7 +26,7 @@ void addEvalCommand(CLI::App& app) {
   cmd->add_option("--materials", args->materials, "glTF 2.0 JSON (or any JSON with a top-level materials array)")
       ->required();
   cmd->add_option("--samples", args->samples, "CSV material,Lx,Ly,Lz,Vx,Vy,Vz or .npy (N,7)")->required();
-  cmd->add_option("--out", args->out, "output CSV r,g,b or .npy (N,3) float32")->required();
+  cmd->add_option("--out", args->out, "output CSV r,g,b or .npy (N,3) float32; - writes CSV to stdout")->required();
   cmd->add_option("--sheen-visibility", args->visibility, "charlie|ashikhmin (default charlie)");
   cmd->add_option("--sheen-distribution", args->distribution, "charlie|ashikhmin (default charlie)");
   cmd->add_option("--sheen-scaling", args->scaling, "min|view|none (default min)");
@@ -37,6 +37,7 @@ void addEvalCommand(CLI::App& app) {
                       "); memory stays bounded by a few chunks whatever the file size");
   cmd->add_option("--device", args->device, "device index or name substring (default $BRDFCL_DEVICE, then 0)");
   cmd->callback([args] {
+    checkResultsPath("--out", args->out);
     EvalOptions o;
     o.sheenVisibility = parseSheenVisibility(args->visibility);
     o.sheenDistribution = parseSheenDistribution(args->distribution);

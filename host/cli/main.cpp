@@ -3,10 +3,12 @@
 #include <cstdio>
 #include <exception>
 
+#include "brdfcl/cleanup.hpp"
 #include "brdfcl/error.hpp"
 #include "commands.hpp"
 
 int main(int argc, char** argv) {
+  brdfcl::installSignalCleanup();
   CLI::App app{"brdfcl: exact glTF BRDF evaluation (sheen, clearcoat, anisotropy, cloth) on OpenCL"};
   app.require_subcommand(1);
   brdfcl::cli::addDevicesCommand(app);
