@@ -290,6 +290,21 @@ TEST(OutputFiles, CheckOutputPathAcceptsDashFifosAndLinks) {
             "--out '" + d.path("bad.csv") + "': cannot write: No such file or directory");
 }
 
+TEST(OutputFiles, CheckOutputPathWithExtensionsRefusesOthers) {
+  ScratchDir d("out-check-ext");
+  EXPECT_EQ(errorOf([&] { brdfcl::checkOutputPath("--out", d.path("img.jpg"), {".png"}); }),
+            "--out '" + d.path("img.jpg") + "': cannot write: unknown extension; use .png or -");
+  EXPECT_EQ(errorOf([&] { brdfcl::checkOutputPath("--exr", d.path("img"), {".exr"}); }),
+            "--exr '" + d.path("img") + "': cannot write: unknown extension; use .exr or -");
+  EXPECT_NO_THROW(brdfcl::checkOutputPath("--out", d.path("img.PNG"), {".png"}));
+  EXPECT_NO_THROW(brdfcl::checkOutputPath("--out", "-", {".png"}));
+  EXPECT_NO_THROW(brdfcl::checkOutputPath("--out", "/dev/null", {".png"}));
+  // The path's own extension counts, not its link target's.
+  fs::create_symlink("x.bin", d.path("l.png"));
+  EXPECT_NO_THROW(brdfcl::checkOutputPath("--out", d.path("l.png"), {".png"}));
+  EXPECT_TRUE(d.list() == std::vector<std::string>{"l.png"});
+}
+
 TEST(OutputFiles, UnknownResultsExtensionIsRefusedBeforeAnyWork) {
   ScratchDir d("out-ext");
   for (const char* name : {"o.exr", "o.json", "o"}) {

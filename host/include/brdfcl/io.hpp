@@ -126,6 +126,12 @@ void writeOutput(const std::string& path, const void* data, std::size_t size);
 // "--out 'out': cannot write: it is a directory; name a file inside it".
 void checkOutputPath(const std::string& option, const std::string& path);
 
+// checkOutputPath plus an extension rule for the commands whose writer does not check one itself
+// (PNG, EXR): the extension must be one of `extensions` (lower case with the dot, compared in
+// any case); "-" and an extensionless FIFO or device are accepted. For --out img.jpg:
+// "--out 'img.jpg': cannot write: unknown extension; use .png or -".
+void checkOutputPath(const std::string& option, const std::string& path, const std::vector<std::string>& extensions);
+
 // checkOutputPath plus the results writers' extension rule (.csv, .npy, "-"):
 // "--out 'o.exr': cannot write: unknown extension; use .csv or .npy (- writes CSV to stdout)".
 void checkResultsPath(const std::string& option, const std::string& path);

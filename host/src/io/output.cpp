@@ -262,6 +262,20 @@ void checkOutputPath(const std::string& option, const std::string& path) {
   if (::access(d.c_str(), W_OK | X_OK) != 0) throw Error(head + std::strerror(errno));
 }
 
+void checkOutputPath(const std::string& option, const std::string& path, const std::vector<std::string>& extensions) {
+  checkOutputPath(option, path);
+  const detail::OutputTarget t = detail::resolveOutput(path);
+  if (t.kind == OutputKind::Stdout) return;
+  const std::string ext = detail::outputExtension(path, t);
+  const std::string name = std::filesystem::path(path).filename().string();
+  if (t.kind == OutputKind::Stream && name.find('.', 1) == std::string::npos) return;  // /dev/null, a FIFO
+  if (std::find(extensions.begin(), extensions.end(), ext) != extensions.end()) return;
+  std::string list;
+  for (std::size_t i = 0; i < extensions.size(); ++i) list += (i ? ", " : "") + extensions[i];
+  throw Error(option + " '" + detail::printable(path, 300) + "': cannot write: unknown extension; use " + list +
+              " or -");
+}
+
 void checkResultsPath(const std::string& option, const std::string& path) {
   checkOutputPath(option, path);
   const std::string ext = detail::outputExtension(path, detail::resolveOutput(path));
