@@ -66,7 +66,7 @@ OutputTarget resolveOutputWithHead(const std::string& userPath, const std::strin
     const ssize_t n = ::readlink(p.c_str(), buf.data(), buf.size());
     if (n < 0 || static_cast<std::size_t>(n) >= buf.size()) throw Error(head + std::strerror(n < 0 ? errno : ENAMETOOLONG));
     const std::string link(buf.data(), static_cast<std::size_t>(n));
-    p = link[0] == '/' ? link : (fs::path(p).parent_path() / link).string();
+    p = !link.empty() && link[0] == '/' ? link : (fs::path(p).parent_path() / link).string();
   }
   if (!isFileName(p)) throw Error(head + "not a file name");
   return {OutputKind::File, p};
