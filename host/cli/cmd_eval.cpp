@@ -26,7 +26,7 @@ void addEvalCommand(CLI::App& app) {
   cmd->add_option("--materials", args->materials, "glTF 2.0 JSON (or any JSON with a top-level materials array)")
       ->required();
   cmd->add_option("--samples", args->samples, "CSV with columns material,Lx,Ly,Lz,Vx,Vy,Vz in any order, or .npy (N,7); - reads stdin (CSV, or NPY by its magic)")->required();
-  cmd->add_option("--out", args->out, "output CSV r,g,b or .npy (N,3) float32")->required();
+  cmd->add_option("--out", args->out, "output CSV r,g,b or .npy (N,3) float32; - writes CSV to stdout")->required();
   cmd->add_option("--sheen-visibility", args->visibility, "charlie|ashikhmin (default charlie)");
   cmd->add_option("--sheen-distribution", args->distribution, "charlie|ashikhmin (default charlie)");
   cmd->add_option("--sheen-scaling", args->scaling, "min|view|none (default min)");
@@ -39,6 +39,7 @@ void addEvalCommand(CLI::App& app) {
                       "); memory stays bounded by a few chunks whatever the file size");
   cmd->add_option("--device", args->device, "device index or name substring (default $BRDFCL_DEVICE, then 0)");
   cmd->callback([args] {
+    checkResultsPath("--out", args->out);
     EvalOptions o;
     o.sheenVisibility = parseSheenVisibility(args->visibility);
     o.sheenDistribution = parseSheenDistribution(args->distribution);
@@ -47,7 +48,6 @@ void addEvalCommand(CLI::App& app) {
     if (args->chunk < 1 || args->chunk > static_cast<long long>(StreamOptions::kMaxChunk))
       throw Error("--chunk " + std::to_string(args->chunk) + " is out of range; use 1 to " +
                   std::to_string(StreamOptions::kMaxChunk));
-    checkOutputPath("--out", args->out);
     auto materials = readUserMaterials(args->materials, args->strict);
     // The header is checked before the device is set up; rows are checked as they stream.
     SampleStream samples(args->samples, args->grid ? 0 : materials.size(), args->grid);

@@ -1,5 +1,5 @@
 // `brdfcl lut`: bakes an engine LUT (sheen-e, ggx-dfg, charlie-dfg) on the device and writes it
-// as .exr, .csv or .h. Arguments are checked before the bake, so a typo fails at once.
+// as .exr, .csv, .h or .npy. Arguments are checked before the bake, so a typo fails at once.
 #include <chrono>
 #include <cstdio>
 
@@ -25,7 +25,7 @@ void addLutCommand(CLI::App& app) {
   cmd->add_option("--size", args->size, "texels per side, 2..4096 (default 128)");
   cmd->add_option("--sheen-visibility", args->visibility, "sheen-e only: charlie|ashikhmin (default charlie)");
   cmd->add_option("--sheen-distribution", args->distribution, "sheen-e only: charlie|ashikhmin (default charlie)");
-  cmd->add_option("--out", args->out, "output .exr (FLOAT R[,G]), .csv or .h")->required();
+  cmd->add_option("--out", args->out, "output .exr (FLOAT R[,G]), .csv, .h or .npy (float32); - writes CSV to stdout")->required();
   cmd->add_option("--device", args->device, "device index or name substring (default $BRDFCL_DEVICE, then 0)");
   cmd->callback([args, cmd] {
     const LutKind kind = parseLutKind(args->kind);

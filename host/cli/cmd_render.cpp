@@ -1,6 +1,7 @@
 // `brdfcl gbuffer`, `brdfcl shade`, `brdfcl render` and `brdfcl demo`: G-buffers of the built-in
 // spheres or of a glTF asset, deferred shading of any G-buffer under a scene's lights and
 // environment, and both chained into linear EXR radiance and a tone-mapped PNG.
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cmath>
@@ -8,6 +9,7 @@
 #include <filesystem>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "brdfcl/demo_asset.hpp"
 #include "brdfcl/frame_budget.hpp"
@@ -41,8 +43,15 @@ std::string lowerExtension(const std::string& path) {
   return e;
 }
 
+// "-" (stdout) and an existing FIFO or device take the format the option implies: the name of
+// a stream says nothing about its format.
+bool isStream(const std::string& path) {
+  struct stat st {};
+  return path == "-" || (::stat(path.c_str(), &st) == 0 && !S_ISREG(st.st_mode) && !S_ISDIR(st.st_mode));
+}
+
 void requireExtension(const std::string& option, const std::string& path, const char* extension) {
-  if (!path.empty() && lowerExtension(path) != extension)
+  if (!path.empty() && !isStream(path) && lowerExtension(path) != extension)
     throw Error(fmt::format("{} '{}' must end in {}", option, path, extension));
 }
 
@@ -55,6 +64,15 @@ void checkOutput(const std::string& option, const std::string& path, const char*
   if (path.empty()) return;
   requireExtension(option, path, extension);
   checkOutputPath(option, path);
+}
+
+// stdout holds one file: two outputs there would interleave into neither.
+void checkOneStdout(std::initializer_list<std::pair<const char*, const std::string*>> outputs) {
+  std::vector<std::string> dashes;
+  for (const auto& [option, path] : outputs)
+    if (*path == "-") dashes.push_back(option);
+  if (dashes.size() > 1)
+    throw Error(fmt::format("{} all write to stdout ('-'); give at most one of them '-'", fmt::join(dashes, " and ")));
 }
 
 void checkSpp(int spp) {
@@ -192,16 +210,17 @@ void addRenderCommands(CLI::App& app) {
     cmd->add_option("--device", a->device, "device index or name substring");
     cmd->callback([a] {
       std::string exr = a->exr, png = a->png;
-      if (lowerExtension(a->out) == ".png") {
+      if (lowerExtension(a->out) == ".png" && !isStream(a->out)) {
         if (!png.empty()) throw Error("--out is already the PNG; drop --png, or give --out FILE.exr");
         png = a->out;
       } else {
-        if (lowerExtension(a->out) != ".exr")
+        if (lowerExtension(a->out) != ".exr" && !isStream(a->out))
           throw Error(fmt::format("--out '{}' must end in .exr or .png", a->out));
         if (!exr.empty()) throw Error("--out is already the EXR; drop --exr, or give --out FILE.png");
         exr = a->out;
       }
-      checkOutput("--out", a->out, lowerExtension(a->out).c_str());
+      checkOneStdout({{"--out", &a->out}, {"--png", &a->png}, {"--exr", &a->exr}});
+      checkOutput("--out", a->out, png == a->out ? ".png" : ".exr");
       checkOutput("--png", a->png, ".png");
       checkOutput("--exr", a->exr, ".exr");
       checkExposure(a->exposure);
@@ -235,14 +254,15 @@ void addRenderCommands(CLI::App& app) {
     cmd->add_option("--device", a->device, "device index or name substring");
     cmd->callback([a, cmd] {
       std::string png = a->out, exr = a->exr;
-      if (lowerExtension(a->out) == ".exr") {
+      if (lowerExtension(a->out) == ".exr" && !isStream(a->out)) {
         if (!exr.empty()) throw Error("--out is already the EXR; drop --exr, or give --out FILE.png");
         exr = a->out;
         png.clear();
-      } else if (lowerExtension(a->out) != ".png") {
+      } else if (lowerExtension(a->out) != ".png" && !isStream(a->out)) {
         throw Error(fmt::format("--out '{}' must end in .png or .exr", a->out));
       }
-      checkOutput("--out", a->out, lowerExtension(a->out).c_str());
+      checkOneStdout({{"--out", &a->out}, {"--exr", &a->exr}, {"--gbuffer", &a->gbuffer}});
+      checkOutput("--out", a->out, png.empty() ? ".exr" : ".png");
       checkOutput("--exr", a->exr, ".exr");
       checkOutput("--gbuffer", a->gbuffer, ".exr");
       checkExposure(a->exposure);

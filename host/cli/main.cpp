@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "arguments.hpp"
+#include "brdfcl/cleanup.hpp"
 #include "brdfcl/error.hpp"
 #include "brdfcl/runtime.hpp"
 #include "commands.hpp"
@@ -29,6 +30,7 @@ void printVersion() {
 }  // namespace brdfcl::cli
 
 int main(int argc, char** argv) {
+  brdfcl::installSignalCleanup();
   CLI::App app{"brdfcl: exact glTF BRDF evaluation (sheen, clearcoat, anisotropy, cloth) on OpenCL"};
   app.name("brdfcl");
   app.require_subcommand(1);

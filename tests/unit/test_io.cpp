@@ -841,12 +841,12 @@ TEST_F(Io, WriteToMissingDirectoryFailsCleanly) {
   EXPECT_EQ(errorOf([&] {
               brdfcl::writeResults(dir_.string(), {1, 2, 3});
             }),
-            "cannot write '" + dir_.string() + "': Is a directory");
+            "cannot write '" + dir_.string() + "': it is a directory; name a file inside it");
   fs::create_directory(dir_ / "sub");
   EXPECT_EQ(errorOf([&] {
               brdfcl::writeResults(path("sub"), {1, 2, 3});
             }),
-            "cannot write '" + path("sub") + "': Is a directory");
+            "cannot write '" + path("sub") + "': it is a directory; name a file inside it");
   EXPECT_EQ(listDir(), (std::vector<std::string>{"sub"}));
 }
 

@@ -318,7 +318,7 @@ TEST_F(LutFiles, UnknownExtensionIsAUserErrorAndWritesNothing) {
   } catch (const brdfcl::Error& e) {
     EXPECT_EQ(e.exitCode(), 2);
     EXPECT_NE(std::string(e.what()).find("t.png"), std::string::npos) << e.what();
-    EXPECT_NE(std::string(e.what()).find(".exr, .csv or .h"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find(".exr, .csv, .h or .npy"), std::string::npos) << e.what();
   }
   EXPECT_EQ(entries(), 0u);
 }
@@ -338,7 +338,7 @@ TEST_F(LutFiles, CliBadArgumentsExitTwoWithNoOutput) {
       {"--kind ggx-dfg --size 1 --out " + path("a.csv"), "--size 1 is out of range"},
       {"--kind ggx-dfg --size 4097 --out " + path("a.csv"), "--size 4097 is out of range"},
       {"--kind ggx-dfg --size x --out " + path("a.csv"), "--size"},
-      {"--kind charlie-dfg --out " + path("a.png"), "use .exr, .csv or .h"},
+      {"--kind charlie-dfg --out " + path("a.png"), "use .exr, .csv, .h or .npy"},
       {"--kind sheen-e --sheen-visibility foo --out " + path("a.exr"), "--sheen-visibility"},
   };
   for (const auto& [args, message] : cases) {

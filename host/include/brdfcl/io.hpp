@@ -87,15 +87,33 @@ class SampleStream {
   std::unique_ptr<Impl> impl_;
 };
 
+// Outputs. Every writer of brdfcl (results, PNG/EXR images, G-buffers, LUTs, the demo .glb)
+// writes through the same layer, whose rules are:
+//  - "-" is stdout. Formats that need to seek (OpenEXR, NPY) are spooled to a temporary file
+//    in the system temp directory first, then copied.
+//  - An existing symlink is followed (chains and relative targets included) and the target is
+//    written; the link stays a link. /dev/stdout and other /proc links are written in place.
+//  - A FIFO, character device or other non-regular file is written in place, without temporary.
+//  - A regular file (or a new one) is written to a temporary beside it (".<name>.tmp.<pid>.<n>")
+//    that is renamed into place on success and removed on failure: no half-written outputs.
+//    Temporaries are removed on SIGINT/SIGTERM/SIGHUP (installSignalCleanup, cleanup.hpp), and
+//    those of dead processes by the next write to their directory.
+//  - A directory is refused: "cannot write 'out': it is a directory; name a file inside it".
+// A missing or unwritable directory fails before any data is written:
+// "cannot write 'out/x.csv': No such file or directory".
+
 // Writes N rows of r,g,b: CSV with header and 9 significant digits (%.9g), or float32 .npy
-// (N,3) v1.0, chosen by extension. Writes a temporary file beside `path`, then renames it into
-// place. rgb.size() must be a multiple of 3 (std::invalid_argument otherwise: a caller bug).
+// (N,3) v1.0, chosen by the extension (any case); "-", and a FIFO or device whose name has no
+// extension (/dev/stdout), get CSV. Any other extension is refused before anything is written:
+// "cannot write 'o.exr': unknown extension; use .csv or .npy (- writes CSV to stdout)".
+// rgb.size() must be a multiple of 3 (std::invalid_argument otherwise: a caller bug).
 void writeResults(const std::string& path, const std::vector<float>& rgb);
 
-// writeResults a chunk at a time: rows go to a temporary file beside `path` as they come, and
-// commit() renames it into place (for .npy after writing the final row count into the header,
-// whose length is fixed at 128 bytes). Destroyed without commit(), e.g. by an exception, it
-// removes the temporary: no half-written output. The bytes equal writeResults's of all rows.
+// writeResults a chunk at a time: rows go to the output as they come (a file's temporary, or
+// straight to stdout or a FIFO for CSV), and commit() completes it (for .npy after writing the
+// final row count into the header, whose length is fixed at 128 bytes). Destroyed without
+// commit(), e.g. by an exception, it removes the temporary: no half-written file. The bytes
+// equal writeResults's of all rows. The constructor throws the path and extension errors.
 class ResultWriter {
  public:
   explicit ResultWriter(const std::string& path);
@@ -112,15 +130,31 @@ class ResultWriter {
   std::unique_ptr<Impl> impl_;
 };
 
-// Runs `write` on a temporary path beside `path` (".<name>.tmp.<pid>.<n>", already created
-// empty) and renames it into place on success; on any exception the temporary is removed and
-// the exception propagates. No half-written outputs. A missing or unwritable directory fails
-// before `write` runs: "cannot write 'out/x.csv': No such file or directory".
+// Runs `write` on a path it must fill (an empty file, already created) and puts the result at
+// `path` by the rules above: for a regular file `write` gets the temporary beside it, renamed
+// into place on success; for "-" or a stream it gets a spool that is then copied there. On any
+// exception the temporary is removed and the exception propagates.
 void writeAtomically(const std::string& path, const std::function<void(const std::string& tmpPath)>& write);
 
+// `size` bytes to `path` by the same rules, streamed directly to "-" and FIFOs.
+void writeOutput(const std::string& path, const void* data, std::size_t size);
+
 // Checks, before any work starts, that `path` can be written as the output named by `option`
-// (e.g. "--png"): not a directory, its directory exists and is writable. Throws the Error the
-// write would throw later: "--png '/nonexistent/o.png': cannot write: No such file or directory".
+// (e.g. "--png") by the rules above: "-" is accepted, symlinks are followed, FIFOs and devices
+// are accepted if writable, a directory is refused, a file's directory must exist and be
+// writable. Throws the Error the write would throw later, in the option's words:
+// "--png '/nonexistent/o.png': cannot write: No such file or directory",
+// "--out 'out': cannot write: it is a directory; name a file inside it".
 void checkOutputPath(const std::string& option, const std::string& path);
+
+// checkOutputPath plus an extension rule for the commands whose writer does not check one itself
+// (PNG, EXR): the extension must be one of `extensions` (lower case with the dot, compared in
+// any case); "-" and an extensionless FIFO or device are accepted. For --out img.jpg:
+// "--out 'img.jpg': cannot write: unknown extension; use .png or -".
+void checkOutputPath(const std::string& option, const std::string& path, const std::vector<std::string>& extensions);
+
+// checkOutputPath plus the results writers' extension rule (.csv, .npy, "-"):
+// "--out 'o.exr': cannot write: unknown extension; use .csv or .npy (- writes CSV to stdout)".
+void checkResultsPath(const std::string& option, const std::string& path);
 
 }  // namespace brdfcl

@@ -1,6 +1,6 @@
 // Look-up tables for engines: the sheen albedo E, the split-sum GGX DFG terms and the Charlie
 // sheen DFG, baked on the device on a uniform grid (x = N.V, y = perceptual roughness), and their
-// writers (.exr FLOAT channels, .csv, C header).
+// writers (.exr FLOAT channels, .csv, C header, float32 .npy).
 #pragma once
 #include <cstddef>
 #include <string>
@@ -38,8 +38,10 @@ constexpr std::size_t kMinLutSize = 2, kMaxLutSize = 4096;
 Lut bakeLut(Runtime& rt, LutKind kind, std::size_t size, const EvalOptions& o = {}, int nodesPerPanel = 12);
 
 // By extension (any case): .exr (FLOAT channels R[, G], scanline j = roughness row j), .csv
-// (header nv,roughness,<channels>, %.9g), .h (C array + #defines). Other extensions: Error.
-// Written atomically.
+// (header nv,roughness,<channels>, %.9g), .h (C array + #defines), .npy (float32, shape
+// (size, size) or (size, size, channels): lut[j, i] is the texel at N.V = i/(size-1),
+// roughness = j/(size-1), as in the EXR and CSV). "-" (and an extensionless FIFO or device)
+// gets CSV. Other extensions: Error. Written by the output rules of io.hpp (atomic for files).
 void writeLut(const Lut& lut, const std::string& path);
 
 // The extension check of writeLut alone, so the CLI can reject a bad --out before a long bake.

@@ -1,5 +1,6 @@
 // LUT baking on the device (kernels/lut.cl) on the uniform (N.V, roughness) grid engines sample,
-// and the LUT writers: OpenEXR FLOAT channels, CSV and a C header, all written atomically.
+// and the LUT writers: OpenEXR FLOAT channels, CSV, a C header and float32 NPY, written through
+// the output layer (atomic for files, "-" is stdout).
 #include "brdfcl/lut.hpp"
 
 #include <algorithm>
@@ -22,6 +23,7 @@
 #include "eval/quadrature.hpp"
 #include "io/files.hpp"
 #include "io/messages.hpp"
+#include "io/output.hpp"
 #include "eval/sheen_albedo_bake.hpp"
 #include "model/pack.hpp"
 
@@ -73,13 +75,9 @@ std::vector<float> bakeGgxDfg(Runtime& rt, std::size_t size, int nodesPerPanel) 
   return out;
 }
 
-std::string lowerExtension(const std::string& path) {
-  const auto slash = path.find_last_of('/');
-  const auto dot = path.find_last_of('.');
-  if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return "";
-  std::string ext = path.substr(dot);
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-  return ext;
+// The format's extension: "-" and extensionless FIFOs or devices get CSV (io/output.hpp).
+std::string lutExtension(const std::string& path) {
+  return detail::outputExtension(path, detail::resolveOutput(path));
 }
 
 std::string identifier(LutKind k) {
@@ -145,9 +143,15 @@ void writeExr(const Lut& lut, const std::string& tmp, const std::string& path, c
   }
 }
 
-void writeText(const std::string& tmp, const std::string& text, const std::string& shown) {
-  if (const int err = detail::writeWholeFile(tmp, text.data(), text.size()))
-    throw Error("cannot write '" + shown + "': " + std::strerror(err));
+// float32 NPY in the texel layout (row j = roughness major, i = N.V, channels innermost), so
+// numpy's lut[j, i] (or lut[j, i, c]) is the texel at x = N.V = i/(size-1), y = r = j/(size-1):
+// the EXR's pixel (i, j) and the CSV's row j*size + i.
+std::string npyBytes(const Lut& lut) {
+  const std::string shape = lut.channels == 1 ? fmt::format("({}, {})", lut.size, lut.size)
+                                              : fmt::format("({}, {}, {})", lut.size, lut.size, lut.channels);
+  std::string s = detail::npyHeader(shape);
+  s.append(reinterpret_cast<const char*>(lut.values.data()), lut.values.size() * sizeof(float));
+  return s;
 }
 
 std::string csvText(const Lut& lut) {
@@ -233,23 +237,22 @@ Lut bakeLut(Runtime& rt, LutKind kind, std::size_t size, const EvalOptions& o, i
 }
 
 void checkLutPath(const std::string& path) {
-  const auto ext = lowerExtension(path);
-  if (ext != ".exr" && ext != ".csv" && ext != ".h")
-    throw Error("cannot write LUT '" + detail::printable(path, 300) + "': unknown extension; use .exr, .csv or .h");
+  const auto ext = lutExtension(path);
+  if (ext != ".exr" && ext != ".csv" && ext != ".h" && ext != ".npy")
+    throw Error("cannot write LUT '" + detail::printable(path, 300) +
+                "': unknown extension; use .exr, .csv, .h or .npy (- writes CSV to stdout)");
 }
 
 void writeLut(const Lut& lut, const std::string& path) {
   checkLutPath(path);
-  const auto ext = lowerExtension(path);
+  const auto ext = lutExtension(path);
   const std::string shown = detail::printable(path, 300);
-  writeAtomically(path, [&](const std::string& tmp) {
-    if (ext == ".exr")
-      writeExr(lut, tmp, path, shown);
-    else if (ext == ".csv")
-      writeText(tmp, csvText(lut), shown);
-    else
-      writeText(tmp, headerText(lut), shown);
-  });
+  if (ext == ".exr") {
+    writeAtomically(path, [&](const std::string& tmp) { writeExr(lut, tmp, path, shown); });
+    return;
+  }
+  const std::string bytes = ext == ".csv" ? csvText(lut) : ext == ".h" ? headerText(lut) : npyBytes(lut);
+  writeOutput(path, bytes.data(), bytes.size());
 }
 
 }  // namespace brdfcl

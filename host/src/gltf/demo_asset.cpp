@@ -360,10 +360,7 @@ void writeDemoAsset(const std::string& path) {
   appendU32(glb, 0x004E4942u);  // "BIN\0"
   glb += binary;
 
-  writeAtomically(path, [&](const std::string& tmp) {
-    if (const int err = detail::writeWholeFile(tmp, glb.data(), glb.size()))
-      throw Error("cannot write '" + shown + "': " + std::strerror(err));
-  });
+  writeOutput(path, glb.data(), glb.size());
 }
 
 }  // namespace brdfcl::gltf

@@ -1,6 +1,6 @@
 // OpenEXR channel reading with the checks every brdfcl EXR input needs, RGB EXR read/write, and
 // the PNG display pipeline (exposure, Khronos PBR Neutral, sRGB OETF, stb_image_write).
-// Every user-facing failure is one line naming the file; outputs go through writeAtomically.
+// Every user-facing failure is one line naming the file; outputs go through the output layer (io.hpp).
 #include <ImathBox.h>
 #include <ImfChannelList.h>
 #include <ImfFrameBuffer.h>
@@ -232,10 +232,7 @@ void writePng(const std::string& path, int width, int height, const std::vector<
   std::unique_ptr<unsigned char, void (*)(void*)> png(
       stbi_write_png_to_mem(pixels.data(), 3 * width, width, height, 3, &length), std::free);
   if (!png) throw Error("cannot write '" + shown + "': the PNG encoder failed (out of memory?)");
-  writeAtomically(path, [&](const std::string& tmp) {
-    if (const int err = detail::writeWholeFile(tmp, png.get(), static_cast<std::size_t>(length)))
-      throw Error("cannot write '" + shown + "': " + std::strerror(err));
-  });
+  writeOutput(path, png.get(), static_cast<std::size_t>(length));
 }
 
 }  // namespace brdfcl

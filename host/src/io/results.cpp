@@ -1,5 +1,5 @@
-// Result output (r,g,b as CSV or .npy), whole or a chunk at a time, and writeAtomically, which
-// every output of brdfcl goes through so that a failed run never leaves a partial file behind.
+// Result output (r,g,b as CSV or .npy), whole or a chunk at a time, through the output layer
+// (io/output.hpp): atomic for files, streamed to stdout, FIFOs and devices.
 // CSV formatting runs on several threads; writes are plain POSIX calls so every errno surfaces.
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -20,6 +20,7 @@
 #include "brdfcl/error.hpp"
 #include "brdfcl/io.hpp"
 #include "io/messages.hpp"
+#include "io/output.hpp"
 #include "io/rows.hpp"
 
 static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__, "the NPY writer copies little-endian floats as-is");
@@ -29,51 +30,16 @@ namespace {
 
 using detail::printable;
 
-std::atomic<unsigned> tmpCounter{0};
-
-// Creates an empty temporary beside `path` (same directory, so rename() is atomic;
-// dot-prefixed, so directory listings ignore it) and returns its name. Fails early, before a
-// possibly long write, on anything that would make the final rename fail.
-std::string createTemporary(const std::string& path) {
-  namespace fs = std::filesystem;
-  const std::string shown = printable(path, 300);
-  const fs::path target(path);
-  const std::string fileName = target.filename().string();
-  if (fileName.empty() || fileName == "." || fileName == "..")
-    throw Error("cannot write '" + shown + "': not a file name");
-  struct stat st {};
-  if (::stat(path.c_str(), &st) == 0 && S_ISDIR(st.st_mode))
-    throw Error("cannot write '" + shown + "': " + std::strerror(EISDIR));
-  const fs::path dir = target.parent_path();
-  const std::string stem = "." + fileName.substr(0, 200) + ".tmp." + std::to_string(::getpid()) + ".";
-  for (int attempt = 0;; ++attempt) {
-    std::string tmp = (dir / (stem + std::to_string(tmpCounter.fetch_add(1)))).string();
-    // O_EXCL: a stale temporary of a crashed run with the same pid must not be reused.
-    const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
-    if (fd >= 0) {
-      ::close(fd);
-      return tmp;
-    }
-    if (errno != EEXIST || attempt > 100) throw Error("cannot write '" + shown + "': " + std::strerror(errno));
-  }
-}
-
-void renameIntoPlace(const std::string& tmp, const std::string& path) {
-  if (std::rename(tmp.c_str(), path.c_str()) != 0)
-    throw Error("cannot write '" + printable(path, 300) + "': " + std::strerror(errno));
-}
-
 // Unbuffered POSIX writes through our own buffer: every failure (ENOSPC, EFBIG, EIO at close)
 // surfaces as an errno that we turn into a message naming the user's path, not the temporary.
 class OutputFile {
  public:
-  OutputFile(const std::string& tmpPath, const std::string& userPath) : userPath_(userPath) {
-    fd_ = ::open(tmpPath.c_str(), O_WRONLY | O_TRUNC | O_CLOEXEC);
-    if (fd_ < 0) fail(errno);
+  // Writes `fd`, which it closes when it `owns` it (not stdout's).
+  OutputFile(int fd, bool owns, const std::string& userPath) : userPath_(userPath), fd_(fd), owns_(owns) {
     buf_.resize(1 << 20);
   }
   ~OutputFile() {
-    if (fd_ >= 0) ::close(fd_);
+    if (fd_ >= 0 && owns_) ::close(fd_);
   }
   OutputFile(const OutputFile&) = delete;
   OutputFile& operator=(const OutputFile&) = delete;
@@ -107,7 +73,7 @@ class OutputFile {
     flush();
     const int fd = fd_;
     fd_ = -1;
-    if (::close(fd) != 0) fail(errno);
+    if (owns_ && ::close(fd) != 0) fail(errno);
   }
 
  private:
@@ -132,23 +98,12 @@ class OutputFile {
 
   std::string userPath_;
   int fd_ = -1;
+  bool owns_ = true;
   std::vector<char> buf_;
   std::size_t used_ = 0;
 };
 
-// NPY v1.0 header for `rows` x 3 float32. Magic (6) + version (2) + length (2) + dict + '\n' is
-// padded to 128 bytes whatever the row count (up to 20 digits), so a streamed file can reserve
-// it before knowing the count and patch it in place afterwards.
-std::string npyHeader(std::size_t rows) {
-  constexpr std::size_t kTotal = 128;
-  std::string dict = "{'descr': '<f4', 'fortran_order': False, 'shape': (" + std::to_string(rows) + ", 3), }";
-  dict.append(kTotal - 10 - dict.size() - 1, ' ');
-  dict += '\n';
-  const std::size_t len = dict.size();
-  const char prefix[10] = {
-      '\x93', 'N', 'U', 'M', 'P', 'Y', 1, 0, static_cast<char>(len & 0xff), static_cast<char>(len >> 8)};
-  return std::string(prefix, sizeof prefix) + dict;
-}
+std::string npyHeader(std::size_t rows) { return detail::npyHeader("(" + std::to_string(rows) + ", 3)"); }
 
 // Appends `rows` CSV rows in rounds of `batch` rows per worker: formatting runs in parallel,
 // writing in file order, and memory stays bounded whatever the row count.
@@ -179,7 +134,9 @@ void appendCsvRows(OutputFile& f, const float* rgb, std::size_t rows, std::vecto
 }  // namespace
 
 struct ResultWriter::Impl {
-  std::string path, tmp;
+  std::string path;
+  detail::OutputTarget target;
+  std::string tmp;  // the temporary beside a File target, or the spool of NPY to a stream; else empty
   bool npy = false, committed = false;
   std::size_t rows = 0;
   std::unique_ptr<OutputFile> file;
@@ -188,10 +145,23 @@ struct ResultWriter::Impl {
 
 ResultWriter::ResultWriter(const std::string& path) : impl_(std::make_unique<Impl>()) {
   impl_->path = path;
-  impl_->npy = detail::hasNpyExtension(path);
-  impl_->tmp = createTemporary(path);
+  impl_->target = detail::resolveOutput(path);
+  const std::string ext = detail::outputExtension(path, impl_->target);
+  if (ext != ".csv" && ext != ".npy")
+    throw Error("cannot write '" + printable(path, 300) + "': " + detail::kResultsExtensionHint);
+  impl_->npy = ext == ".npy";
+  const bool toFile = impl_->target.kind == detail::OutputKind::File;
   try {
-    impl_->file = std::make_unique<OutputFile>(impl_->tmp, path);
+    if (toFile || impl_->npy) {
+      // NPY's row count is patched into its header at commit: a stream gets a spooled copy.
+      impl_->tmp = toFile ? detail::createTemporary(impl_->target.path, path) : detail::createSpool(path);
+      const int fd = ::open(impl_->tmp.c_str(), O_WRONLY | O_TRUNC | O_CLOEXEC);
+      if (fd < 0) throw Error("cannot write '" + printable(path, 300) + "': " + std::strerror(errno));
+      impl_->file = std::make_unique<OutputFile>(fd, true, path);
+    } else {
+      const int fd = detail::openStream(impl_->target, path);
+      impl_->file = std::make_unique<OutputFile>(fd, impl_->target.kind == detail::OutputKind::Stream, path);
+    }
     if (impl_->npy) {
       const std::string h = npyHeader(0);  // patched by commit()
       impl_->file->append(h.data(), h.size());
@@ -200,7 +170,7 @@ ResultWriter::ResultWriter(const std::string& path) : impl_(std::make_unique<Imp
     }
   } catch (...) {
     impl_->file.reset();
-    ::unlink(impl_->tmp.c_str());
+    if (!impl_->tmp.empty()) detail::removeTemporary(impl_->tmp);
     throw;
   }
 }
@@ -208,7 +178,7 @@ ResultWriter::ResultWriter(const std::string& path) : impl_(std::make_unique<Imp
 ResultWriter::~ResultWriter() {
   if (impl_->committed) return;
   impl_->file.reset();
-  ::unlink(impl_->tmp.c_str());
+  if (!impl_->tmp.empty()) detail::removeTemporary(impl_->tmp);
 }
 
 std::size_t ResultWriter::rows() const { return impl_->rows; }
@@ -230,7 +200,19 @@ void ResultWriter::commit() {
   }
   impl_->file->close();
   impl_->file.reset();
-  renameIntoPlace(impl_->tmp, impl_->path);
+  if (impl_->target.kind == detail::OutputKind::File) {
+    detail::commitTemporary(impl_->tmp, impl_->target.path, impl_->path);
+  } else if (!impl_->tmp.empty()) {
+    const int fd = detail::openStream(impl_->target, impl_->path);
+    try {
+      detail::copyFile(impl_->tmp, fd, impl_->path);
+    } catch (...) {
+      if (impl_->target.kind == detail::OutputKind::Stream) ::close(fd);
+      throw;
+    }
+    detail::closeStream(fd, impl_->target, impl_->path);
+    detail::removeTemporary(impl_->tmp);
+  }
   impl_->committed = true;
 }
 
@@ -239,32 +221,6 @@ void writeResults(const std::string& path, const std::vector<float>& rgb) {
   ResultWriter w(path);
   w.append(rgb.data(), rgb.size() / 3);
   w.commit();
-}
-
-void writeAtomically(const std::string& path, const std::function<void(const std::string& tmpPath)>& write) {
-  const std::string tmp = createTemporary(path);
-  try {
-    write(tmp);
-    renameIntoPlace(tmp, path);
-  } catch (...) {
-    ::unlink(tmp.c_str());
-    throw;
-  }
-}
-
-void checkOutputPath(const std::string& option, const std::string& path) {
-  namespace fs = std::filesystem;
-  const std::string head = option + " '" + printable(path, 300) + "': cannot write: ";
-  struct stat st {};
-  if (::stat(path.c_str(), &st) == 0) {
-    if (S_ISDIR(st.st_mode)) throw Error(head + "it is a directory; name a file inside it");
-    if (::access(path.c_str(), W_OK) != 0) throw Error(head + std::strerror(errno));
-  }
-  const fs::path dir = fs::path(path).parent_path();
-  const std::string d = dir.empty() ? "." : dir.string();
-  if (::stat(d.c_str(), &st) != 0) throw Error(head + std::strerror(errno));
-  if (!S_ISDIR(st.st_mode)) throw Error(head + "'" + printable(d, 300) + "' is not a directory");
-  if (::access(d.c_str(), W_OK | X_OK) != 0) throw Error(head + std::strerror(errno));
 }
 
 }  // namespace brdfcl
