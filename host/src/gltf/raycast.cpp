@@ -123,8 +123,10 @@ GBufferCamera gbufferCamera(const View& v) {
   c.fovDegrees = static_cast<float>(2.0 * std::atan(v.tanHalfFovY) * 180.0 / 3.14159265358979323846);
   c.ymag = static_cast<float>(v.halfHeight);
   c.xmag = static_cast<float>(v.halfHeight * v.aspect);
-  c.znear = static_cast<float>(v.znear);
-  c.zfar = static_cast<float>(v.zfar);
+  // Beyond float range a plane is as good as absent (the header holds floats).
+  const double top = std::numeric_limits<float>::max();
+  c.znear = static_cast<float>(std::min(v.znear, top));
+  c.zfar = v.zfar < top ? static_cast<float>(v.zfar) : 0.0f;
   return c;
 }
 }  // namespace

@@ -52,8 +52,8 @@ struct Field {
   Range range;
 };
 
-// V is left out of the unit-length check: the shader normalizes it and the reader refuses a
-// zero V, and a view direction's length changes nothing the way a normal's does.
+// V is only refused when zero (readGBuffer): it is a direction, used normalized, whereas a normal
+// whose length is off 1 betrays a decoding mistake (a normal map left in [0, 1], say).
 const Field kFields[] = {
     {"P", "XYZ", "Position", true, &GBuffer::P, Range::Any},
     {"N", "XYZ", "Normal", true, &GBuffer::N, Range::UnitVector},
