@@ -452,10 +452,9 @@ TEST(GBufferCamera, ShadeWarnsWhenTheCamerasDiffer) {
             "the camera of s.json differs from the one that made v.exr (view direction differs by 4.4°); v.exr's V "
             "channels give every pixel's view, so neither camera changes the image");
   // Neither file has a camera, and the G-buffer has no V: the stand-in default is named.
-  Scene standIn = turned;
-  standIn.hasCamera = false;
+  const Scene standIn = parseScene("{}", "s.json", "");
   EXPECT_EQ(shadeCameraWarning("s.json", standIn, "g.exr", plain),
-            "neither s.json nor g.exr has a camera; shading with the default camera at (0, 0, 5) looking at the origin "
+            "neither s.json nor g.exr has a camera; shading with the default camera at (0, 0, 5) looking at (0, 0, 0) "
             "(add \"camera\" to s.json)");
   EXPECT_EQ(shadeCameraWarning("s.json", standIn, "g.exr", withView), "");  // V: nothing to say
   EXPECT_EQ(shadeCameraWarning("s.json", standIn, "g.exr", readGBuffer(g)), "");  // the G-buffer's camera is used

@@ -331,9 +331,11 @@ std::string shadeCameraWarning(const std::string& sceneName, const Scene& scene,
                                                  sceneName));
   }
   if (!scene.hasCamera && !g.camera && !g.hasView())
-    return fmt::format("neither {} nor {} has a camera; shading with the default camera at (0, 0, 5) looking at "
-                       "the origin (add \"camera\" to {})",
-                       sceneName, gbufferName, sceneName);
+    return fmt::format("neither {} nor {} has a camera; shading with the default camera at ({}, {}, {}) looking at "
+                       "({}, {}, {}) (add \"camera\" to {})",
+                       sceneName, gbufferName, scene.cameraPosition[0], scene.cameraPosition[1],
+                       scene.cameraPosition[2], scene.cameraTarget[0], scene.cameraTarget[1], scene.cameraTarget[2],
+                       sceneName);
   return "";
 }
 
