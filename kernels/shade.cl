@@ -2,7 +2,7 @@
    add every punctual light through the batch evaluator's own layers (brdf_sheened, then
    layer_clearcoat on the clearcoat normal), then split-sum image-based light (times the glTF
    occlusion) and the clearcoat-darkened emission. Masked-out pixels show the environment. The view
-   is the G-buffer's V where it has one, else the camera's. */
+   is the G-buffer's V where it has one, else the camera's (pinhole or orthographic). */
 #define BRDFCL_W 1
 #include "brdf/material.h"
 #include "common/material_pack.h"
@@ -52,6 +52,8 @@ __kernel void shade(__global const float* restrict gb, int width, int height, br
   const int np = width * height, i = y * width + x;
 #define GB(k) gb[(k) * np + i]
   const float3 eye = (float3)(cam.position[0], cam.position[1], cam.position[2]);
+  const float3 forward = (float3)(cam.forward[0], cam.forward[1], cam.forward[2]);
+  const bool ortho = cam.orthographic > 0.5f;
   /* The G-buffer's own view direction, when it has one, replaces the camera's (orthographic
      and other cameras a pinhole cannot express; docs/gbuffer.md). */
   const float3 Vg = (float3)(GB(GB_VX), GB(GB_VY), GB(GB_VZ));
@@ -59,11 +61,12 @@ __kernel void shade(__global const float* restrict gb, int width, int height, br
   float3 result;
   if (GB(GB_MASK) < 0.5f && has_v) {
     result = env_chain(background, env_w, env_h, 1, -normalize(Vg), env_rotation, 0.0f);
+  } else if (GB(GB_MASK) < 0.5f && ortho) {
+    result = env_chain(background, env_w, env_h, 1, forward, env_rotation, 0.0f);
   } else if (GB(GB_MASK) < 0.5f) {
     float sx = (2.0f * ((float)x + 0.5f) / (float)width - 1.0f) * cam.tan_half_fov * cam.aspect;
     float sy = (1.0f - 2.0f * ((float)y + 0.5f) / (float)height) * cam.tan_half_fov;
-    float3 d = normalize((float3)(cam.forward[0], cam.forward[1], cam.forward[2]) +
-                         sx * (float3)(cam.right[0], cam.right[1], cam.right[2]) +
+    float3 d = normalize(forward + sx * (float3)(cam.right[0], cam.right[1], cam.right[2]) +
                          sy * (float3)(cam.up[0], cam.up[1], cam.up[2]));
     result = env_chain(background, env_w, env_h, 1, d, env_rotation, 0.0f);
   } else {
@@ -83,7 +86,7 @@ __kernel void shade(__global const float* restrict gb, int width, int height, br
     Nc = dot(Nc, Nc) > 1e-12f ? normalize(Nc) : N;
     float3 Tc, Bc;
     frame_from_normal(Nc, &Tc, &Bc);
-    float3 V = has_v ? normalize(Vg) : normalize(eye - P);
+    float3 V = has_v ? normalize(Vg) : ortho ? -forward : normalize(eye - P);
 
     brdfcl_material_params q;
     q.base_color[0] = GB(GB_BASE_R); q.base_color[1] = GB(GB_BASE_G); q.base_color[2] = GB(GB_BASE_B);

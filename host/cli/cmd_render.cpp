@@ -198,16 +198,18 @@ void addRenderCommands(CLI::App& app) {
     struct Args {
       std::string gbuffer, scene, out, png, exr, device;
       float exposure = 0.0f;
+      bool noCheck = false;
     };
     auto a = std::make_shared<Args>();
     auto* cmd = app.add_subcommand("shade", "Shade a G-buffer EXR under a scene's lights and environment");
     cmd->add_option("--gbuffer", a->gbuffer, "G-buffer .exr (docs/gbuffer.md)")->required();
-    cmd->add_option("--scene", a->scene, "scene JSON (docs/gbuffer.md)")->required();
+    cmd->add_option("--scene", a->scene, "scene JSON (docs/gbuffer.md); without \"camera\", the G-buffer's camera")->required();
     cmd->add_option("--out", a->out, "linear radiance .exr, or a tone-mapped sRGB .png")->required();
     cmd->add_option("--png", a->png, "also a tone-mapped sRGB PNG");
     cmd->add_option("--exr", a->exr, "also the linear radiance as .exr");
     cmd->add_option("--exposure", a->exposure, "exposure in stops for the PNG (default 0)");
     cmd->add_option("--device", a->device, "device index or name substring");
+    cmd->add_flag("--no-check", a->noCheck, "skip the G-buffer's range checks (factors in [0, 1], unit normals)");
     cmd->callback([a] {
       std::string exr = a->exr, png = a->png;
       if (lowerExtension(a->out) == ".png" && !isStream(a->out)) {
@@ -224,8 +226,12 @@ void addRenderCommands(CLI::App& app) {
       checkOutput("--png", a->png, ".png");
       checkOutput("--exr", a->exr, ".exr");
       checkExposure(a->exposure);
-      const GBuffer g = readGBuffer(a->gbuffer);
+      GBufferReadOptions readOptions;
+      readOptions.check = !a->noCheck;
+      const GBuffer g = readGBuffer(a->gbuffer, readOptions);
       const Scene scene = readScene(a->scene);
+      if (const std::string w = shadeCameraWarning(a->scene, scene, a->gbuffer, g); !w.empty())
+        printWarning(w);
       Runtime rt(a->device);
       checkFrameFits(FrameJob::Shade, g.width, g.height, usableHostMemory(), &rt.info(), a->gbuffer);
       Shader shader(rt, scene);

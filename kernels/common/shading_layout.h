@@ -36,12 +36,14 @@ typedef struct brdfcl_light {
   float pad[3];
 } brdfcl_light;
 
-/* Pinhole camera, 16 floats: a pixel (x + 0.5, y + 0.5) from the top-left looks along
-   forward + ((2 (x + 0.5) / w - 1) tan_half_fov aspect) right + ((1 - 2 (y + 0.5) / h) tan_half_fov) up. */
+/* Camera, 16 floats. Pinhole (orthographic 0): a pixel (x + 0.5, y + 0.5) from the top-left looks
+   along forward + ((2 (x + 0.5) / w - 1) tan_half_fov aspect) right + ((1 - 2 (y + 0.5) / h)
+   tan_half_fov) up. Orthographic (1, a G-buffer's camera): every pixel looks along forward, and
+   only that direction matters to shading, so the view's extent is not carried. */
 typedef struct brdfcl_camera {
   float position[3], tan_half_fov;
   float right[3], aspect;
-  float up[3], pad0;
+  float up[3], orthographic;
   float forward[3], pad1;
 } brdfcl_camera;
 

@@ -1,11 +1,28 @@
 // The G-buffer: per-pixel world-space geometry and glTF material parameters read from (and
 // written to) a single-part OpenEXR file. The format is specified in docs/gbuffer.md.
 #pragma once
+#include <array>
 #include <cstddef>
+#include <optional>
 #include <string>
 #include <vector>
 
 namespace brdfcl {
+
+// The camera that made a G-buffer, as brdfcl writes it into the EXR header (docs/gbuffer.md,
+// "Camera attributes"). Pixel (x, y) maps to s = 2 (x + 0.5) / width - 1, t = 1 - 2 (y + 0.5) /
+// height; a perspective ray leaves `position` along forward + s tan(fov/2) aspect right +
+// t tan(fov/2) up (aspect = width / height); an orthographic ray leaves position + s xmag right +
+// t ymag up along forward.
+struct GBufferCamera {
+  bool orthographic = false;
+  std::array<float, 3> position{0.0f, 0.0f, 0.0f};
+  // World-space unit axes, orthogonal: right x up = -forward (glTF's camera looks down its -Z).
+  std::array<float, 3> right{1.0f, 0.0f, 0.0f}, up{0.0f, 1.0f, 0.0f}, forward{0.0f, 0.0f, -1.0f};
+  float fovDegrees = 40.0f;   // perspective: vertical field of view, in (0, 180)
+  float xmag = 1.0f, ymag = 1.0f;  // orthographic: half width and half height of the view, > 0
+  float znear = 0.0f, zfar = 0.0f;  // distances along forward where surfaces start and end; zfar 0 = infinite
+};
 
 // 3-channel vectors are interleaved xyz (or rgb) per pixel; every vector is row-major from the
 // top-left pixel. Optional channels are empty when absent; the shading then uses the glTF
@@ -27,6 +44,9 @@ struct GBuffer {
   std::vector<float> anisotropyStrength, anisotropyRotation;  // rotation in radians, CCW from T
   std::vector<float> occlusion;  // glTF ambient occlusion, [0, 1]; dims image-based light only (default 1)
   std::vector<float> V;          // world direction towards the viewer, unit; overrides the scene camera
+  // The camera that made it, when the file says (brdfcl's own G-buffers do); written to and
+  // read from the EXR header, never a channel.
+  std::optional<GBufferCamera> camera;
 
   std::size_t pixelCount() const { return static_cast<std::size_t>(width) * static_cast<std::size_t>(height); }
   bool hasTangent() const { return !T.empty(); }
@@ -45,11 +65,19 @@ struct GBuffer {
 // multi-part, deep or truncated; a data window other than the display window; a missing
 // required channel; an incomplete vector (T.X without T.Z); a used channel with x/y sampling
 // other than 1 or of type UINT; several Blender layers with the same pass; a NaN or an infinity
-// in a used channel.
+// in a used channel; camera attributes that are incomplete, of the wrong type or out of range.
+// With options.check (the default), also a value outside its documented range on a covered
+// pixel (mask >= 0.5): a glTF factor outside [0, 1], a negative emission, a normal or tangent
+// (N, clearcoatN, T) whose length is not 1 within kGBufferUnitTolerance.
+struct GBufferReadOptions {
+  bool check = true;
+};
+constexpr double kGBufferUnitTolerance = 1e-3;
+GBuffer readGBuffer(const std::string& path, const GBufferReadOptions& options);
 GBuffer readGBuffer(const std::string& path);
 
 // Writes every non-empty channel under its canonical name (HALF when `half`, else FLOAT; ZIP
-// compression), atomically (see writeAtomically). A required channel that is empty or any
+// compression) and the camera's header attributes when it has one, atomically (see writeAtomically). A required channel that is empty or any
 // channel whose size is not width·height·(1 or 3) is a caller bug: std::invalid_argument.
 void writeGBuffer(const std::string& path, const GBuffer& g, bool half = false);
 

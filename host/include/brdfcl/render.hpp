@@ -22,7 +22,19 @@ struct Image {
 // roughness over a rough coloured base, anisotropy strength and rotation, metallic x roughness;
 // its camera, a key and a fill light, and the built-in studio environment.
 Scene spheresScene();
+// The G-buffer carries the camera it was ray-cast with (GBuffer::camera).
 GBuffer renderSpheresGBuffer(Runtime& rt, const Scene& scene, int width, int height);
+
+// How a scene's camera differs from a G-buffer's, for a warning: "" when they agree within float
+// rounding, else e.g. "position differs by 0.8 (0, 0, 13 vs 0, 0, 12.2), fov 40° vs 30°".
+// The scene's (stand-in or given) camera comes first in every pair.
+std::string cameraDifference(const Scene& scene, const GBufferCamera& gbufferCamera);
+
+// `brdfcl shade`'s warning about the camera Shader::shade will use, without "brdfcl: warning: ",
+// or "" when there is nothing to say: the scene's camera differs from the G-buffer's (naming the
+// difference and which one is used), or neither file has a camera and the G-buffer no V.
+std::string shadeCameraWarning(const std::string& sceneName, const Scene& scene, const std::string& gbufferName,
+                               const GBuffer& g);
 
 // Equirectangular RGB (3 planes) of a scene's environment, intensity applied; `builtin` kinds:
 // "sky", "studio", "uniform" (radiance 1: the white furnace). A file (readEnvironmentRgb) has its
@@ -38,6 +50,8 @@ class Shader {
   Shader(Runtime& rt, const Scene& scene, EvalOptions options = {});
   ~Shader();
   // Not for concurrent calls on one Shader: it keeps its G-buffer planes between frames.
+  // Pixels without V look from the scene's camera when it has one (Scene::hasCamera), else from
+  // the G-buffer's (GBuffer::camera), else from the scene's stand-in defaults.
   Image shade(const GBuffer& g);
 
  private:

@@ -26,6 +26,9 @@ struct Environment {
 };
 
 struct Scene {
+  // The camera is given (a scene file with "camera", spheresScene()) or stands in with the
+  // defaults below; Shader::shade takes a G-buffer's own camera over a stand-in.
+  bool hasCamera = false;
   std::array<float, 3> cameraPosition{0.0f, 0.0f, 5.0f}, cameraTarget{0.0f, 0.0f, 0.0f};
   float fovDegrees = 40.0f;  // vertical field of view
   std::vector<Light> lights;

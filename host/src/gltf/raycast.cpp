@@ -109,6 +109,28 @@ Raycaster::~Raycaster() = default;
 
 std::size_t Raycaster::textureBytes() const { return s_->textures->bytes(); }
 
+namespace {
+// The view as the G-buffer's header records it; the image's aspect gives the orthographic xmag.
+GBufferCamera gbufferCamera(const View& v) {
+  GBufferCamera c;
+  c.orthographic = v.orthographic;
+  for (int k = 0; k < 3; ++k) {
+    c.position[k] = static_cast<float>(v.position[k]);
+    c.right[k] = static_cast<float>(v.right[k]);
+    c.up[k] = static_cast<float>(v.up[k]);
+    c.forward[k] = static_cast<float>(v.forward[k]);
+  }
+  c.fovDegrees = static_cast<float>(2.0 * std::atan(v.tanHalfFovY) * 180.0 / 3.14159265358979323846);
+  c.ymag = static_cast<float>(v.halfHeight);
+  c.xmag = static_cast<float>(v.halfHeight * v.aspect);
+  // Beyond float range a plane is as good as absent (the header holds floats).
+  const double top = std::numeric_limits<float>::max();
+  c.znear = static_cast<float>(std::min(v.znear, top));
+  c.zfar = v.zfar < top ? static_cast<float>(v.zfar) : 0.0f;
+  return c;
+}
+}  // namespace
+
 GBuffer Raycaster::trace(const View& view, int width, int height, float jx, float jy) const {
   GBuffer g;
   trace(view, width, height, jx, jy, g);
@@ -120,6 +142,7 @@ void Raycaster::trace(const View& view, int width, int height, float jx, float j
     throw Error("image size " + std::to_string(width) + "x" + std::to_string(height) + ": expected positive sizes");
   g.width = width;
   g.height = height;
+  g.camera = gbufferCamera(view);
   const std::size_t n = g.pixelCount();
   const unsigned threads = std::max(2u, std::thread::hardware_concurrency());
   auto parallel = [threads](const auto& work) {

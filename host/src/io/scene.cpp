@@ -128,6 +128,7 @@ class SceneReader {
     onlyKeys(v, "camera", {"position", "target", "fov"});
     const auto pos = v.find("position");
     if (pos == v.end()) fail("camera", "missing \"position\": [x, y, z]");
+    s.hasCamera = true;
     s.cameraPosition = vec3(*pos, "camera.position");
     if (const auto it = v.find("target"); it != v.end()) s.cameraTarget = vec3(*it, "camera.target");
     if (s.cameraPosition == s.cameraTarget)

@@ -21,7 +21,8 @@
 namespace brdfcl {
 
 static_assert(sizeof(brdfcl_light) == 16 * 4 && std::is_trivially_copyable_v<brdfcl_light>);
-static_assert(sizeof(brdfcl_camera) == 16 * 4 && offsetof(brdfcl_camera, forward) == 48);
+static_assert(sizeof(brdfcl_camera) == 16 * 4 && offsetof(brdfcl_camera, orthographic) == 44 &&
+              offsetof(brdfcl_camera, forward) == 48);
 static_assert(sizeof(brdfcl_sphere) == 20 * 4 && offsetof(brdfcl_sphere, anisotropy_rotation) == 64);
 
 namespace {
@@ -54,6 +55,34 @@ brdfcl_camera cameraFor(const Scene& s, int w, int h) {
   c.tan_half_fov = std::tan(s.fovDegrees * float(M_PI) / 360.0f);
   c.aspect = float(w) / float(h);
   return c;
+}
+
+// A G-buffer's camera as it is; its fov goes through the same float expression as a scene's, so
+// a spheres G-buffer shades exactly as with the scene that made it.
+brdfcl_camera cameraFor(const GBufferCamera& g, int w, int h) {
+  brdfcl_camera c{};
+  for (int i = 0; i < 3; ++i) {
+    c.position[i] = g.position[i];
+    c.right[i] = g.right[i];
+    c.up[i] = g.up[i];
+    c.forward[i] = g.forward[i];
+  }
+  c.orthographic = g.orthographic ? 1.0f : 0.0f;
+  c.tan_half_fov = g.orthographic ? 0.0f : std::tan(g.fovDegrees * float(M_PI) / 360.0f);
+  c.aspect = float(w) / float(h);
+  return c;
+}
+
+GBufferCamera gbufferCamera(const brdfcl_camera& c, float fovDegrees) {
+  GBufferCamera g;
+  for (int i = 0; i < 3; ++i) {
+    g.position[i] = c.position[i];
+    g.right[i] = c.right[i];
+    g.up[i] = c.up[i];
+    g.forward[i] = c.forward[i];
+  }
+  g.fovDegrees = fovDegrees;
+  return g;
 }
 
 std::vector<brdfcl_light> packLights(const Scene& s) {
@@ -147,6 +176,7 @@ cl::Buffer readOnly(const cl::Context& ctx, const std::vector<float>& v) {
 
 Scene spheresScene() {
   Scene s;
+  s.hasCamera = true;
   s.cameraPosition = {0.0f, 0.0f, 13.0f};
   s.cameraTarget = {0.0f, 0.0f, 0.0f};
   s.fovDegrees = 30.0f;
@@ -258,7 +288,59 @@ GBuffer renderSpheresGBuffer(Runtime& rt, const Scene& scene, int width, int hei
   g.clearcoatN = get3(GB_CCN_X);
   g.anisotropyStrength = get1(GB_ANISO_STRENGTH);
   g.anisotropyRotation = get1(GB_ANISO_ROTATION);
+  // Rays start 1e-4 along the ray (the kernel's hit threshold), a bound too small to record.
+  g.camera = gbufferCamera(cameraFor(scene, width, height), scene.fovDegrees);
   return g;
+}
+
+std::string cameraDifference(const Scene& scene, const GBufferCamera& g) {
+  const brdfcl_camera c = cameraFor(scene, 1, 1);
+  std::vector<std::string> parts;
+  auto degrees = [](double cosine) { return std::acos(std::clamp(cosine, -1.0, 1.0)) * 180.0 / M_PI; };
+  auto dot3 = [](const float* a, const std::array<float, 3>& b) {
+    return double(a[0]) * b[0] + double(a[1]) * b[1] + double(a[2]) * b[2];
+  };
+  double d2 = 0.0, scale2 = 0.0;
+  for (int i = 0; i < 3; ++i) {
+    d2 += (double(c.position[i]) - g.position[i]) * (double(c.position[i]) - g.position[i]);
+    scale2 += double(g.position[i]) * g.position[i];
+  }
+  // Tolerances well above float rounding of a written and re-read camera, well below what shows.
+  if (std::sqrt(d2) > 1e-4 * std::max(1.0, std::sqrt(scale2)))
+    parts.push_back(fmt::format("position differs by {:.3g} ({}, {}, {} vs {}, {}, {})", std::sqrt(d2), c.position[0],
+                                c.position[1], c.position[2], g.position[0], g.position[1], g.position[2]));
+  const double view = degrees(dot3(c.forward, g.forward)), roll = degrees(dot3(c.up, g.up));
+  if (view > 0.01) parts.push_back(fmt::format("view direction differs by {:.3g}°", view));
+  else if (roll > 0.01) parts.push_back(fmt::format("up direction differs by {:.3g}°", roll));
+  if (g.orthographic)
+    parts.push_back(fmt::format("projection perspective (fov {}°) vs orthographic (ymag {})", scene.fovDegrees, g.ymag));
+  else if (std::fabs(scene.fovDegrees - g.fovDegrees) > 0.01)
+    parts.push_back(fmt::format("fov {}° vs {}°", scene.fovDegrees, g.fovDegrees));
+  std::string out;
+  for (const auto& p : parts) out += (out.empty() ? "" : ", ") + p;
+  return out;
+}
+
+std::string shadeCameraWarning(const std::string& sceneName, const Scene& scene, const std::string& gbufferName,
+                               const GBuffer& g) {
+  if (scene.hasCamera && g.camera) {
+    const std::string difference = cameraDifference(scene, *g.camera);
+    if (difference.empty()) return "";
+    return fmt::format("the camera of {} differs from the one that made {} ({}); {}", sceneName, gbufferName, difference,
+                       g.hasView() ? fmt::format("{}'s V channels give every pixel's view, so neither camera changes "
+                                                 "the image",
+                                                 gbufferName)
+                                   : fmt::format("shading with the scene's camera, which {} gives explicitly (remove "
+                                                 "its \"camera\" to use the G-buffer's)",
+                                                 sceneName));
+  }
+  if (!scene.hasCamera && !g.camera && !g.hasView())
+    return fmt::format("neither {} nor {} has a camera; shading with the default camera at ({}, {}, {}) looking at "
+                       "({}, {}, {}) (add \"camera\" to {})",
+                       sceneName, gbufferName, scene.cameraPosition[0], scene.cameraPosition[1],
+                       scene.cameraPosition[2], scene.cameraTarget[0], scene.cameraTarget[1], scene.cameraTarget[2],
+                       sceneName);
+  return "";
 }
 
 // Everything the shader derives from the environment and the sheen options: prepared once per
@@ -467,7 +549,8 @@ Image Shader::shade(const GBuffer& g) {
     k.setArg(a++, bg);
     k.setArg(a++, g.width);
     k.setArg(a++, g.height);
-    k.setArg(a++, cameraFor(s.scene, g.width, g.height));
+    k.setArg(a++, s.scene.hasCamera || !g.camera ? cameraFor(s.scene, g.width, g.height)
+                                                  : cameraFor(*g.camera, g.width, g.height));
     k.setArg(a++, s.lights);
     k.setArg(a++, s.lightCount);
     k.setArg(a++, s.light->background);
