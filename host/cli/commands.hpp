@@ -11,5 +11,6 @@ void addAlbedoCommand(CLI::App& app);
 void addRenderCommands(CLI::App& app);
 void addBenchCommand(CLI::App& app);
 void addLutCommand(CLI::App& app);
+void addDiffCommand(CLI::App& app);
 
 }  // namespace brdfcl::cli
