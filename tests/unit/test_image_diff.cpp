@@ -90,6 +90,32 @@ std::set<std::string> files(const ScratchDir& dir) {
   return names;
 }
 
+// Labels and ticks never cover the panel or the colour bar, and nothing is cut off at the
+// canvas's edges (its outermost pixels are background).
+void expectFigureIntact(const plot::Figure& f, plot::ColourMap map, const std::vector<float>& values, double vMin,
+                        double vMax) {
+  const plot::Rect& p = f.panel;
+  for (int j = 0; j < p.height; ++j)
+    for (int i = 0; i < p.width; ++i) {
+      const float v = values[std::size_t(j) * p.width + i];
+      const plot::Colour want = std::isfinite(v) ? plot::mapColour(map, (v - vMin) / (vMax - vMin)) : plot::kNotFinite;
+      ASSERT_EQ(f.canvas.at(p.x + i, p.y + j), want) << "panel pixel " << i << "," << j;
+    }
+  const plot::Rect& b = f.colourBar;
+  for (int j = 0; j < b.height; ++j)
+    for (int i = 0; i < b.width; ++i)
+      ASSERT_EQ(f.canvas.at(b.x + i, b.y + j), f.canvas.at(b.x, b.y + j)) << "colour bar pixel " << i << "," << j;
+  const int w = f.canvas.width(), h = f.canvas.height();
+  for (int x = 0; x < w; ++x) {
+    ASSERT_EQ(f.canvas.at(x, 0), plot::kWhite) << x;
+    ASSERT_EQ(f.canvas.at(x, h - 1), plot::kWhite) << x;
+  }
+  for (int y = 0; y < h; ++y) {
+    ASSERT_EQ(f.canvas.at(0, y), plot::kWhite) << y;
+    ASSERT_EQ(f.canvas.at(w - 1, y), plot::kWhite) << y;
+  }
+}
+
 }  // namespace
 
 TEST(ImageDiff, StatisticsMatchDirectComputation) {
@@ -294,6 +320,14 @@ TEST(ImageDiff, PictureShowsTheImageWithItsLegendInTheDivergingMap) {
   // The colour bar: +range at its top row, -range at its bottom row.
   EXPECT_EQ(f.canvas.at(f.colourBar.x + 2, f.colourBar.y), red);
   EXPECT_EQ(f.canvas.at(f.colourBar.x + 2, f.colourBar.y + f.colourBar.height - 1), blue);
+  expectFigureIntact(f, plot::ColourMap::Diverging, diff.relative, -range, range);
+  // A panel smaller than its labels keeps its size and its pixels; the layout grows round it.
+  const std::vector<float> tiny(3 * 2 * 3, 1.0f);
+  const ImageDiff small = diffImages(tiny, tiny, 2, 3);
+  const plot::Figure fs = drawImageDiff(small, "a long name for a tiny image.exr", "b.exr", 0.5);
+  EXPECT_EQ(fs.panel.width, 2);
+  EXPECT_EQ(fs.panel.height, 3);
+  expectFigureIntact(fs, plot::ColourMap::Diverging, small.relative, -0.5, 0.5);
 
   // The file is this picture, PNG-encoded, at the figure's size.
   writeImageDiffPng(dir.path("d.png"), diff, "a.exr", "b.exr", range);
@@ -471,6 +505,7 @@ TEST(Plot, HeatMapOfAnAnalyticField) {
   EXPECT_GE(f.panel.x, 20);
   EXPECT_GT(f.colourBar.x, f.panel.x + w);
   EXPECT_LE(f.colourBar.x + f.colourBar.width + 20, f.canvas.width());
+  expectFigureIntact(f, spec.map, v, -1, 1);
   EXPECT_THROW(plot::drawHeatMap(spec, w, h, std::vector<float>(10)), std::invalid_argument);
 
   ScratchDir dir("plot");

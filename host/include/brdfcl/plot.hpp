@@ -20,7 +20,8 @@ constexpr Colour kBlack{0, 0, 0};
 constexpr Colour kNotFinite{255, 0, 255};
 
 // The font: glyphs of 5x7 pixels for ASCII 32..126 (others draw as '?'), in a cell kAdvance
-// wide and kLineHeight tall, scaled by whole numbers only so the pixels stay sharp.
+// wide and kLineHeight tall, scaled by whole numbers only so the pixels stay sharp. g, p, q and
+// y are drawn 2 rows lower than the others, below the baseline, into the space between lines.
 constexpr int kGlyphWidth = 5;
 constexpr int kGlyphHeight = 7;
 constexpr int kAdvance = 6;

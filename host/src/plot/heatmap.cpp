@@ -28,10 +28,10 @@ Labelled label(const Ticks& t, int scale) {
 }
 
 // x-axis ticks whose labels, centred under them, leave at least one glyph's room between
-// neighbours: the densest such set of at most `most` ticks.
+// neighbours: the densest such set.
 Labelled xTicks(double a, double b, int pixels, int scale) {
   const double lo = std::min(a, b), hi = std::max(a, b);
-  for (int n = std::max(2, pixels / (30 * scale)); n > 1; --n) {
+  for (int n = std::max(3, pixels / (10 * scale)); n > 1; --n) {
     Labelled l = label(niceTicks(lo, hi, n), scale);
     if (l.ticks.values.size() < 2) return l;
     const double spacing = pixels * l.ticks.step / (hi - lo);
@@ -57,9 +57,11 @@ Figure drawHeatMap(const HeatMap& s, int width, int height, const std::vector<fl
   const int sc = s.textScale > 0 ? s.textScale : (height >= 600 ? 2 : 1);
   const int glyphH = kGlyphHeight * sc, line = kLineHeight * sc, pad = 8 * sc, tick = 4 * sc, gap = 3 * sc;
 
-  // Measure everything first: the canvas is sized to hold it.
-  const int barW = 14 * sc, barH = std::max(height, 100 * sc);
-  const Labelled bar = label(niceTicks(s.vMin, s.vMax, std::max(2, barH / (3 * line))), sc);
+  // Measure everything first: the canvas is sized to hold it. A panel smaller than its labels
+  // keeps its size; the labels then start at its top or left edge and the layout makes room.
+  const int xLabelW = textWidth(s.xLabel, sc), yLabelW = textWidth(s.yLabel, sc), barLabelW = textWidth(s.barLabel, sc);
+  const int barW = 14 * sc, barH = std::max({height, 100 * sc, barLabelW});
+  const Labelled bar = label(niceTicks(s.vMin, s.vMax, std::max(2, barH / (2 * line))), sc);
   Labelled xs, ys;
   if (s.axes) {
     xs = xTicks(s.xLeft, s.xRight, width, sc);
@@ -73,11 +75,11 @@ Figure drawHeatMap(const HeatMap& s, int width, int height, const std::vector<fl
 
   const int left = pad + (s.yLabel.empty() ? 0 : line) + (s.axes ? ys.widest + tick + gap + 2 : 0);
   const int top = pad + static_cast<int>(heading.size()) * line + (heading.empty() ? 0 : pad);
-  const int barX = left + width + std::max(2 * pad, (s.axes ? xs.widest / 2 : 0) + pad);
+  const int barX = left + std::max(width + std::max(2 * pad, (s.axes ? xs.widest / 2 : 0) + pad), xLabelW + 2 * pad);
   const int right = barX + barW + tick + gap + bar.widest + (s.barLabel.empty() ? 0 : gap + line) + pad;
   const int below = (s.axes ? tick + gap + glyphH : 0) + (s.xLabel.empty() ? 0 : 2 * gap + glyphH);
   const int canvasW = std::max(right, pad + headingW + pad);
-  const int canvasH = top + std::max(height + below, barH + glyphH / 2 + 1) + pad;
+  const int canvasH = top + std::max({height + below, barH + glyphH / 2 + 1, yLabelW}) + pad;
 
   Figure f{Canvas(canvasW, canvasH), {left, top, width, height}, {barX, top, barW, barH}};
   Canvas& c = f.canvas;
@@ -105,9 +107,9 @@ Figure drawHeatMap(const HeatMap& s, int width, int height, const std::vector<fl
     }
   }
   if (!s.xLabel.empty())
-    c.text(left + (width - textWidth(s.xLabel, sc)) / 2, top + height + below - glyphH, s.xLabel, kInk, sc);
+    c.text(left + std::max(0, (width - xLabelW) / 2), top + height + below - glyphH, s.xLabel, kInk, sc);
   if (!s.yLabel.empty())
-    c.text(pad, top + (height - textWidth(s.yLabel, sc)) / 2, s.yLabel, kInk, sc, true);
+    c.text(pad, top + std::max(0, (height - yLabelW) / 2), s.yLabel, kInk, sc, true);
 
   // The bar's rows run from vMax (top row) to vMin (bottom row) exactly, so both ends are shown.
   for (int j = 0; j < barH; ++j) {
@@ -121,8 +123,7 @@ Figure drawHeatMap(const HeatMap& s, int width, int height, const std::vector<fl
     c.text(barX + barW + tick + gap, py - glyphH / 2, bar.labels[k], kInk, sc);
   }
   if (!s.barLabel.empty())
-    c.text(barX + barW + tick + gap + bar.widest + gap, top + (barH - textWidth(s.barLabel, sc)) / 2, s.barLabel, kInk,
-           sc, true);
+    c.text(barX + barW + tick + gap + bar.widest + gap, top + (barH - barLabelW) / 2, s.barLabel, kInk, sc, true);
   return f;
 }
 
