@@ -2,12 +2,17 @@
 // against numbers computed here from the inputs, the picture's size and colours, the font, the
 // colour maps' lightness, ticks, a heat map of an analytic field, and the command's exit codes.
 #include <gtest/gtest.h>
+#include <malloc.h>
+#include <sys/resource.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <limits>
 #include <set>
 #include <string>
@@ -20,6 +25,7 @@
 #include "brdfcl/image_diff.hpp"
 #include "brdfcl/plot.hpp"
 #include "process.hpp"
+#include "support.hpp"
 
 namespace fs = std::filesystem;
 using namespace brdfcl;
@@ -515,6 +521,42 @@ TEST(Plot, HeatMapOfAnAnalyticField) {
   if (const char* keep = std::getenv("BRDFCL_TEST_FIGURES")) plot::writePng(std::string(keep) + "/heatmap.png", f.canvas);
 }
 
+// The encoder's allocation failing, as ErrorsDeathTest.PngEncoderOutOfMemory provokes it for the
+// renders' PNG (test_errors.cpp explains the method): a fresh copy of this binary makes a canvas
+// larger than the heap's free space, then caps its address space just above what it holds.
+TEST(PlotDeathTest, PngEncoderOutOfMemory) {
+  if (brdfcl::test::kAddressSanitizer) GTEST_SKIP() << brdfcl::test::kNoAddressSpaceLimitUnderAsan;
+  GTEST_FLAG_SET(death_test_style, "threadsafe");
+  ScratchDir dir("plotoom");
+  const std::string out = dir.path("big.png");
+  EXPECT_EXIT(
+      {
+        const std::size_t freeHeap = mallinfo2().fordblks;
+        int side = 2048;
+        while (3ull * side * side <= freeHeap + (16u << 20)) side *= 2;
+        const plot::Canvas canvas(side, side, plot::Colour{10, 20, 30});
+        std::size_t vm = 0;
+        std::ifstream status("/proc/self/status");
+        for (std::string line; std::getline(status, line);)
+          if (line.rfind("VmSize:", 0) == 0) vm = std::stoull(line.substr(7)) << 10;
+        struct rlimit limit {};
+        limit.rlim_cur = limit.rlim_max = vm + (8u << 20);
+        ::setrlimit(RLIMIT_AS, &limit);
+        int code = 1;
+        try {
+          plot::writePng(out, canvas);
+        } catch (const Error& e) {
+          std::fprintf(stderr, "%s\n", e.what());
+          code = fs::exists(out) || !fs::is_empty(dir.dir()) ? 2 : 0;
+        }
+        std::error_code ec;
+        fs::remove_all(dir.dir(), ec);  // this copy's own directory: its destructor never runs
+        std::fflush(stderr);
+        ::_exit(code);
+      },
+      ::testing::ExitedWithCode(0), "cannot write '.*/big.png': the PNG encoder failed \\(out of memory\\?\\)");
+}
+
 // ---- the command ----
 
 TEST(ImageDiffCli, PrintsStatisticsAndWritesThePicture) {
@@ -570,6 +612,16 @@ TEST(ImageDiffCli, FailAboveExitsOneAfterTheReport) {
       << fail.err;
   EXPECT_EQ(cli(dir, {"diff", "a.exr", "b.exr", "--fail-above", "0.05"}).status, 0);
   EXPECT_EQ(cli(dir, {"diff", "a.exr", "b.exr", "--fail-above", "0", "--threshold", "0.2"}).status, 0);
+  // Nothing comparable is a failure for CI, not a pass; without --fail-above it is only reported.
+  writeExrRgb(dir.path("nan.exr"), 10, 10, std::vector<float>(300, kNaN));
+  const RunResult none = cli(dir, {"diff", "nan.exr", "b.exr", "--fail-above", "1"});
+  EXPECT_EQ(none.status, 1) << none.describe();
+  EXPECT_NE(none.out.find("100 pixels are not finite in A"), std::string::npos) << none.out;
+  EXPECT_NE(none.err.find("no pixel is finite in both images (--fail-above)"), std::string::npos) << none.err;
+  const RunResult reported = cli(dir, {"diff", "nan.exr", "b.exr", "--out", "n.png"});
+  EXPECT_EQ(reported.status, 0) << reported.describe();
+  EXPECT_NE(reported.out.find("nothing to compare"), std::string::npos) << reported.out;
+  EXPECT_TRUE(fs::exists(dir.path("n.png")));
 }
 
 TEST(ImageDiffCli, BadInputIsOneLineAndWritesNothing) {
