@@ -220,6 +220,19 @@ TEST(ImageDiff, IdenticalImagesGiveZeros) {
   EXPECT_EQ(defaultDiffRange(s), 0.01);
 }
 
+TEST(ImageDiff, HugeDifferencesStayFiniteInThePicture) {
+  // d = 3e38 / floor is beyond float: the pixel was compared, so it is drawn at the red end.
+  std::vector<float> a(12, 0.5f), b(12, 0.5f);
+  a[0] = a[1] = a[2] = 3e38f;
+  ImageDiffOptions o;
+  o.floor = 1e-6;
+  const ImageDiff diff = diffImages(a, b, 4, 1, o);
+  EXPECT_EQ(diff.stats.compared, 4u);
+  EXPECT_TRUE(std::isfinite(diff.relative[0]));
+  const plot::Figure f = drawImageDiff(diff, "a", "b", 1.0);
+  EXPECT_EQ(f.canvas.at(f.panel.x, f.panel.y), plot::mapColour(plot::ColourMap::Diverging, 1.0));
+}
+
 TEST(ImageDiff, NonFinitePixelsAreCountedAndExcluded) {
   const int w = 6, h = 5;
   const std::vector<float> b0 = baseImage(w, h);
@@ -467,6 +480,7 @@ TEST(Plot, NiceTicksAndTheirLabels) {
   EXPECT_EQ(plot::niceTicks(3, 3, 4).values, std::vector<double>{3});
   EXPECT_LE(plot::niceTicks(-6.3, 6.3, 7).values.size(), 7u);
   EXPECT_THROW(plot::niceTicks(1, 0, 3), std::invalid_argument);
+  EXPECT_EQ(plot::niceTicks(-1e308, 1e308, 5).values, (std::vector<double>{-1e308, 1e308}));
   EXPECT_EQ(plot::tickLabel(0.05, 0.01), "0.05");
   EXPECT_EQ(plot::tickLabel(-0.04, 0.02), "-0.04");
   EXPECT_EQ(plot::tickLabel(-10, 5), "-10");

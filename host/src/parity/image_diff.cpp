@@ -110,7 +110,9 @@ ImageDiff diffImages(const std::vector<float>& a, const std::vector<float>& b, i
     if (std::isnan(ya[i])) continue;
     absolute[i] = ya[i] - yb[i];
     relative[i] = absolute[i] / std::max(yb[i], s.floor);
-    out.relative[i] = static_cast<float>(relative[i]);
+    // Clamped to the float range: a compared pixel must not turn into an "infinite" one in the picture.
+    const double fmax = std::numeric_limits<float>::max();
+    out.relative[i] = static_cast<float>(std::clamp(relative[i], -fmax, fmax));
     s.aboveThreshold += std::fabs(relative[i]) > s.threshold;
   }
   s.fractionAbove = s.compared ? double(s.aboveThreshold) / double(s.compared) : 0.0;

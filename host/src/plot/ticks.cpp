@@ -20,6 +20,11 @@ Ticks niceTicks(double lo, double hi, int maxTicks) {
     return t;
   }
   const double range = hi - lo;
+  if (!std::isfinite(range)) {  // lo and hi near the ends of the double range: just the ends
+    t.values = {lo, hi};
+    t.step = hi / 2 - lo / 2;
+    return t;
+  }
   double magnitude = std::pow(10.0, std::floor(std::log10(range / maxTicks)));
   // A relative slack so that an end that is a multiple of the step, up to rounding, gets its tick.
   const double slack = 1e-9;
