@@ -394,6 +394,17 @@ TEST(Plot, EveryPrintableGlyphHasInkAndTheGlyphsDiffer) {
     for (int y = 0; y < c.height(); ++y) EXPECT_EQ(c.at(plot::kAdvance - 1, y), plot::kWhite) << s;
     EXPECT_TRUE(seen.insert(c.rgb()).second) << "glyph '" << s << "' looks like another one";
   }
+  // BRDFCL_TEST_FIGURES=DIR keeps a sheet of the font at scales 1 and 3 for a person to look at.
+  if (const char* keep = std::getenv("BRDFCL_TEST_FIGURES")) {
+    plot::Canvas sheet(32 * plot::kAdvance * 3 + 16, 14 * plot::kLineHeight);
+    for (int row = 0; row < 3; ++row) {
+      std::string line;
+      for (int code = 32 + 32 * row; code < std::min(127, 64 + 32 * row); ++code) line += char(code);
+      sheet.text(8, 4 + row * plot::kLineHeight, line, plot::kBlack, 1);
+      sheet.text(8, 4 + (4 + 3 * row) * plot::kLineHeight, line, plot::kBlack, 3);
+    }
+    plot::writePng(std::string(keep) + "/font.png", sheet);
+  }
 }
 
 TEST(Plot, TextWidthIsGlyphCountTimesAdvance) {
