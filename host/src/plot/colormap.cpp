@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <iterator>
 
 #include "brdfcl/image.hpp"
 #include "brdfcl/plot.hpp"
@@ -30,18 +31,25 @@ double decodeSrgb(std::uint8_t v) {
 }
 
 template <std::size_t N>
-Colour interpolate(const Hex (&points)[N], double t) {
+struct Linear {
+  double rgb[N][3];
+  explicit Linear(const Hex (&points)[N]) {
+    for (std::size_t i = 0; i < N; ++i)
+      for (int c = 0; c < 3; ++c) rgb[i][c] = decodeSrgb(points[i][c]);
+  }
+};
+
+template <std::size_t N>
+Colour interpolate(const Hex (&points)[N], const Linear<N>& linear, double t) {
   const double x = t * double(N - 1);
   const std::size_t i = std::min(static_cast<std::size_t>(x), N - 2);
   const double f = x - double(i);
-  // The ends must come out exactly as defined (tests compare them), so they skip the round trip.
+  // The control points must come out exactly as defined (tests compare them): no round trip.
   if (f == 0.0) return {points[i][0], points[i][1], points[i][2]};
   if (f == 1.0) return {points[i + 1][0], points[i + 1][1], points[i + 1][2]};
   std::uint8_t out[3];
-  for (int c = 0; c < 3; ++c) {
-    const double lin = (1.0 - f) * decodeSrgb(points[i][c]) + f * decodeSrgb(points[i + 1][c]);
-    out[c] = encodeSrgb8(static_cast<float>(lin));
-  }
+  for (int c = 0; c < 3; ++c)
+    out[c] = encodeSrgb8(static_cast<float>((1.0 - f) * linear.rgb[i][c] + f * linear.rgb[i + 1][c]));
   return {out[0], out[1], out[2]};
 }
 }  // namespace
@@ -49,7 +57,9 @@ Colour interpolate(const Hex (&points)[N], double t) {
 Colour mapColour(ColourMap map, double t) {
   if (std::isnan(t)) return kNotFinite;
   t = std::fmin(std::fmax(t, 0.0), 1.0);
-  return map == ColourMap::Diverging ? interpolate(kDiverging, t) : interpolate(kSequential, t);
+  static const Linear<std::size(kDiverging)> diverging(kDiverging);
+  static const Linear<std::size(kSequential)> sequential(kSequential);
+  return map == ColourMap::Diverging ? interpolate(kDiverging, diverging, t) : interpolate(kSequential, sequential, t);
 }
 
 }  // namespace brdfcl::plot

@@ -31,7 +31,7 @@ Labelled label(const Ticks& t, int scale) {
 // neighbours: the densest such set.
 Labelled xTicks(double a, double b, int pixels, int scale) {
   const double lo = std::min(a, b), hi = std::max(a, b);
-  for (int n = std::max(3, pixels / (10 * scale)); n > 1; --n) {
+  for (int n = std::clamp(pixels / (10 * scale), 3, 40); n > 1; --n) {
     Labelled l = label(niceTicks(lo, hi, n), scale);
     if (l.ticks.values.size() < 2) return l;
     const double spacing = pixels * l.ticks.step / (hi - lo);
