@@ -16,6 +16,7 @@ void addAlbedoCommand(CLI::App& app);
 void addRenderCommands(CLI::App& app);
 void addBenchCommand(CLI::App& app);
 void addLutCommand(CLI::App& app);
+void addDiffCommand(CLI::App& app);
 
 // "brdfcl: warning: <text>" on stderr: the one form every command warns in.
 void printWarning(const std::string& text);

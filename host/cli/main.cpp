@@ -41,6 +41,7 @@ int main(int argc, char** argv) {
   brdfcl::cli::addRenderCommands(app);
   brdfcl::cli::addBenchCommand(app);
   brdfcl::cli::addLutCommand(app);
+  brdfcl::cli::addDiffCommand(app);
   if (argc < 2) {
     std::fputs(app.help().c_str(), stdout);
     return 0;
