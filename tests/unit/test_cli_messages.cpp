@@ -215,6 +215,14 @@ TEST(CliMessages, AlbedoOfTheUsersOwnMaterials) {
   EXPECT_NEAR(printed, y, 6e-5) << one.out;
   expectOneLineError(cli(dir, {"albedo", "--materials", "m.json", "--material", "2"}), "--material 2 is out of range");
   expectOneLineError(cli(dir, {"albedo", "--material", "0"}), "--material applies to --materials FILE");
+  // The materials reader's typo rules hold here too: a warning, or with --strict the error.
+  std::ofstream(dir.path("typo.json")) << R"({"materials": [{"pbrMetallicRoughness": {"metalicFactor": 0}}]})";
+  const RunResult warned = cli(dir, {"albedo", "--materials", "typo.json"});
+  EXPECT_EQ(warned.status, 0) << warned.describe();
+  ASSERT_EQ(warned.warningLines().size(), 1u) << warned.describe();
+  EXPECT_NE(warned.warningLines()[0].find("did you mean metallicFactor?"), std::string::npos) << warned.err;
+  expectOneLineError(cli(dir, {"albedo", "--materials", "typo.json", "--strict"}), "(an error under --strict)");
+  expectOneLineError(cli(dir, {"albedo", "--strict"}), "--strict applies to --materials FILE");
 }
 
 // shade writes what --out names: a PNG alone (one run: each prepares its environment).

@@ -227,7 +227,7 @@ std::vector<Material> Document::materials(std::size_t textureCount, std::vector<
   const json* list = member(doc_, "materials");
   if (!list || !list->is_array()) return out;
   const auto report = [&](const std::string& finding) {
-    if (strict) throw Error(source_ + ": " + finding);
+    if (strict) throw Error(source_ + ": " + brdfcl::detail::strictError(finding));
     warnings.push_back(source_ + ": " + finding);
   };
   for (std::size_t i = 0; i < list->size(); ++i) {

@@ -93,7 +93,7 @@ class MaterialReader {
     std::vector<MaterialParams> out;
     out.reserve(it->size());
     const auto report = [&](const std::string& finding) {
-      if (strict_) throw Error(source_ + ": " + finding);
+      if (strict_) throw Error(source_ + ": " + detail::strictError(finding));
       if (warn_) warn_(source_ + ": " + finding);
     };
     for (std::size_t i = 0; i < it->size(); ++i) {

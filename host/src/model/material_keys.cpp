@@ -202,4 +202,10 @@ void checkMaterialKeys(const json& material, const std::string& path, MaterialKe
   Checker(reader, report).material(material, path);
 }
 
+std::string strictError(std::string finding) {
+  if (const auto at = finding.find(", ignored"); at != std::string::npos) finding.erase(at, 9);
+  if (const auto at = finding.find(": ignored: "); at != std::string::npos) finding.replace(at, 11, ": not evaluated: ");
+  return finding + " (an error under --strict)";
+}
+
 }  // namespace brdfcl::detail

@@ -27,4 +27,9 @@ enum class MaterialKeyReader { MaterialsFile, GltfAsset };
 void checkMaterialKeys(const nlohmann::json& material, const std::string& path, MaterialKeyReader reader,
                        const std::function<void(const std::string&)>& report);
 
+// A finding as the error --strict makes of it: the warning's ", ignored" (or "ignored: " of a
+// left-out extension) no longer holds, so it is dropped (or reads "not evaluated: "), and the
+// option that made it an error is named.
+std::string strictError(std::string finding);
+
 }  // namespace brdfcl::detail
