@@ -28,6 +28,32 @@ static inline float lut1(__global const float* lut, int size, float x) {
   return mix(lut[i], lut[i + 1], t - (float)i);
 }
 
+/* Quadrilinear look-up of the anisotropic split-sum table (aniso_dfg.cl) at N.V, perceptual
+   roughness, strength and the view's azimuth psi in [0, pi/2] from the anisotropy direction. */
+static inline float2 lut_aniso(__global const float* lut, float nv, float r, float s, float psi) {
+  const int n[4] = {BRDFCL_ANISO_DFG_NV, BRDFCL_ANISO_DFG_R, BRDFCL_ANISO_DFG_S, BRDFCL_ANISO_DFG_PSI};
+  const float u[4] = {nv, r, s, psi * 0.6366197723675814f};
+  int i0[4];
+  float f[4];
+  for (int d = 0; d < 4; ++d) {
+    float c = clamp(u[d], 0.0f, 1.0f) * (float)(n[d] - 1);
+    i0[d] = min((int)c, n[d] - 2);
+    f[d] = c - (float)i0[d];
+  }
+  float2 acc = (float2)(0.0f);
+  for (int corner = 0; corner < 16; ++corner) {
+    float w = 1.0f;
+    int index = 0;
+    for (int d = 3; d >= 0; --d) {
+      const int bit = (corner >> d) & 1;
+      w *= bit ? f[d] : 1.0f - f[d];
+      index = index * n[d] + i0[d] + bit;
+    }
+    acc += w * vload2(index, lut);
+  }
+  return acc;
+}
+
 static inline float3 frame_local(float3 d, float3 t, float3 b, float3 n) { return (float3)(dot(d, t), dot(d, b), dot(d, n)); }
 
 /* 004 layering needs a frame only for its normal: any tangent will do. */
@@ -44,7 +70,8 @@ __kernel void shade(__global const float* restrict gb, int width, int height, br
                     __global const float* restrict background, __global const float* restrict ggx_chain,
                     __global const float* restrict charlie_chain, __global const float* restrict irradiance,
                     int env_w, int env_h, int prefilter_levels, int irr_w, int irr_h, float env_rotation,
-                    __global const float* restrict dfg, int dfg_size, __global const float* restrict sheen_e,
+                    __global const float* restrict dfg, int dfg_size, __global const float* restrict aniso_dfg,
+                    __global const float* restrict sheen_e,
                     int sheen_e_size, __global const float* restrict fresnel_lambert, int fl_size,
                     __global float* restrict out) {
   int x = get_global_id(0), y = get_global_id(1);
@@ -137,10 +164,13 @@ __kernel void shade(__global const float* restrict gb, int width, int height, br
        reproduces Appendix B's directional albedo; sheen uses view-only albedo scaling (000). */
     float nv = max(NdotV, 1e-4f), rough = q.roughness;
     float3 R = 2.0f * dot(N, V) * N - V;
+    float psi = 0.0f;
     if (q.anisotropy_strength > 0.0f) {
       /* 002 "Image-based lighting": bent normal towards the anisotropic direction. */
       float3 Ta = normalize(cos(q.anisotropy_rotation) * T + sin(q.anisotropy_rotation) * B);
       float3 Ba = cross(N, Ta);
+      /* The albedo is symmetric under Ta -> -Ta and Ba -> -Ba: the table holds [0, pi/2]. */
+      psi = atan2(fabs(dot(V, Ba)), fabs(dot(V, Ta)) + 1e-12f);
       float3 bent = normalize(cross(cross(Ba, V), Ba));
       float a = 1.0f - q.anisotropy_strength * (1.0f - rough);
       a = a * a;
@@ -151,13 +181,11 @@ __kernel void shade(__global const float* restrict gb, int width, int height, br
     float lod = rough * (float)(prefilter_levels - 1);
     float3 spec = env_chain(ggx_chain, env_w, env_h, prefilter_levels, R, env_rotation, lod);
     float3 irr = env_chain(irradiance, irr_w, irr_h, 1, N, env_rotation, 0.0f);
-    /* The DFG table is isotropic: an anisotropic lobe is looked up at the RMS of its two alphas,
-       the best single match to its directional albedo against the reference (within 2.5% up to
-       strength 0.6, 10% at strength 1); its radiance is still read at the base roughness (002). */
-    float dfg_rough = q.anisotropy_strength > 0.0f
-                          ? sqrt(sqrt(0.5f * (packed.alpha_t * packed.alpha_t + packed.alpha * packed.alpha)))
-                          : rough;
-    float2 ab = lut2(dfg, dfg_size, nv, dfg_rough);
+    /* An anisotropic lobe's albedo depends on both alphas and on the view's azimuth, which no
+       isotropic look-up matches (10 % off at strength 1): it has its own table. Its radiance is
+       still read at the base roughness about the bent normal (002). */
+    float2 ab = q.anisotropy_strength > 0.0f ? lut_aniso(aniso_dfg, nv, rough, q.anisotropy_strength, psi)
+                                             : lut2(dfg, dfg_size, nv, rough);
     float C = lut1(fresnel_lambert, fl_size, nv);
     float3 base = (float3)(q.base_color[0], q.base_color[1], q.base_color[2]);
     float3 dielectric = irr * base * (0.96f * (1.0f - C)) + spec * (0.04f * ab.x + ab.y);

@@ -60,4 +60,12 @@ typedef struct brdfcl_sphere {
 /* Equirectangular environment: direction d (world, +Y up) -> u = 1/2 + atan2(d.x, -d.z) / 2pi
    (+ rotation / 2pi), v = acos(d.y) / pi, v = 0 at the top row. */
 
+/* The anisotropic split-sum table (kernels/aniso_dfg.cl): texels over N.V x perceptual roughness
+   x anisotropy strength x view azimuth from the anisotropy direction in [0, pi/2], N.V fastest,
+   A and B interleaved. */
+#define BRDFCL_ANISO_DFG_NV 32
+#define BRDFCL_ANISO_DFG_R 24
+#define BRDFCL_ANISO_DFG_S 12
+#define BRDFCL_ANISO_DFG_PSI 7
+
 #endif

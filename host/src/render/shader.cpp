@@ -14,6 +14,7 @@
 #include "brdfcl/evaluator.hpp"
 #include "brdfcl/lut.hpp"
 #include "io/disk_cache.hpp"
+#include "render/aniso_dfg.hpp"
 #include "brdfcl/render.hpp"
 #include "kernels/common/shading_layout.h"
 #include "model/pack.hpp"
@@ -526,6 +527,21 @@ std::shared_ptr<const PreparedLight> prepareLight(Runtime& rt, const Environment
 
 Shader::~Shader() = default;
 
+namespace {
+// The anisotropic split-sum table, only for G-buffers that have anisotropy: its first bake takes
+// seconds, which nothing else should pay. Once per runtime; a one-float stand-in otherwise (the
+// kernel reads the table only where the strength is > 0).
+cl::Buffer anisotropicDfgFor(Runtime& rt, const GBuffer& g) {
+  static std::mutex mutex;
+  static std::map<const Runtime*, cl::Buffer> tables;
+  const bool needed = std::any_of(g.anisotropyStrength.begin(), g.anisotropyStrength.end(), [](float v) { return v > 0.0f; });
+  std::lock_guard<std::mutex> lock(mutex);
+  if (auto it = tables.find(&rt); it != tables.end()) return it->second;
+  if (!needed) return readOnly(rt.context(), std::vector<float>(2, 0.0f));
+  return tables.emplace(&rt, readOnly(rt.context(), cachedAnisotropicDfg(rt))).first->second;
+}
+}  // namespace
+
 Image Shader::shade(const GBuffer& g) {
   auto& s = *s_;
   auto& planes = s.planes;
@@ -545,6 +561,8 @@ Image Shader::shade(const GBuffer& g) {
     s.rt.queue().enqueueWriteBuffer(bg, CL_FALSE, 0, planes.size() * 4, planes.data());
     cl::Buffer bo(ctx, CL_MEM_WRITE_ONLY, out.size() * 4);
     cl::Kernel k(s.program, "shade");
+    // Held until the launch is done: a kernel argument does not keep its buffer alive.
+    const cl::Buffer aniso = anisotropicDfgFor(s.rt, g);
     int a = 0;
     k.setArg(a++, bg);
     k.setArg(a++, g.width);
@@ -565,6 +583,7 @@ Image Shader::shade(const GBuffer& g) {
     k.setArg(a++, s.scene.environment.rotation);
     k.setArg(a++, s.light->dfg);
     k.setArg(a++, kDfgSize);
+    k.setArg(a++, aniso);
     k.setArg(a++, s.light->sheenE);
     k.setArg(a++, s.light->sheenESize);
     k.setArg(a++, s.light->fresnelLambert);
