@@ -97,7 +97,7 @@ __kernel void env_prefilter(__global const float* restrict chain, int w0, int h0
       }
     }
     float lod = sample_lod(pdf, count, w0, h0);
-    acc += wgt * env_chain(chain, w0, h0, levels, l, 0.0f, lod);
+    acc += wgt * env_chain(chain, w0, h0, w0, h0, levels, l, 0.0f, lod);
     weight += wgt;
   }
   float3 out = weight > 0.0f ? acc / weight : (float3)(0.0f);

@@ -69,7 +69,8 @@ __kernel void shade(__global const float* restrict gb, int width, int height, br
                     __global const brdfcl_light* restrict lights, int light_count,
                     __global const float* restrict background, __global const float* restrict ggx_chain,
                     __global const float* restrict charlie_chain, __global const float* restrict irradiance,
-                    int env_w, int env_h, int prefilter_levels, int irr_w, int irr_h, float env_rotation,
+                    int env_w, int env_h, int charlie_w, int charlie_h, int prefilter_levels, int irr_w, int irr_h,
+                    float env_rotation,
                     __global const float* restrict dfg, int dfg_size, __global const float* restrict aniso_dfg,
                     __global const float* restrict sheen_e,
                     int sheen_e_size, __global const float* restrict fresnel_lambert, int fl_size,
@@ -87,15 +88,15 @@ __kernel void shade(__global const float* restrict gb, int width, int height, br
   const bool has_v = dot(Vg, Vg) > 0.0f;
   float3 result;
   if (GB(GB_MASK) < 0.5f && has_v) {
-    result = env_chain(background, env_w, env_h, 1, -normalize(Vg), env_rotation, 0.0f);
+    result = env_chain(background, env_w, env_h, env_w, env_h, 1, -normalize(Vg), env_rotation, 0.0f);
   } else if (GB(GB_MASK) < 0.5f && ortho) {
-    result = env_chain(background, env_w, env_h, 1, forward, env_rotation, 0.0f);
+    result = env_chain(background, env_w, env_h, env_w, env_h, 1, forward, env_rotation, 0.0f);
   } else if (GB(GB_MASK) < 0.5f) {
     float sx = (2.0f * ((float)x + 0.5f) / (float)width - 1.0f) * cam.tan_half_fov * cam.aspect;
     float sy = (1.0f - 2.0f * ((float)y + 0.5f) / (float)height) * cam.tan_half_fov;
     float3 d = normalize(forward + sx * (float3)(cam.right[0], cam.right[1], cam.right[2]) +
                          sy * (float3)(cam.up[0], cam.up[1], cam.up[2]));
-    result = env_chain(background, env_w, env_h, 1, d, env_rotation, 0.0f);
+    result = env_chain(background, env_w, env_h, env_w, env_h, 1, d, env_rotation, 0.0f);
   } else {
     /* Frame: N; T made orthogonal to N, or built from N when absent (docs/gbuffer.md). */
     float3 P = (float3)(GB(GB_PX), GB(GB_PY), GB(GB_PZ));
@@ -179,8 +180,9 @@ __kernel void shade(__global const float* restrict gb, int width, int height, br
       R = normalize(mix(2.0f * dot(bent, V) * bent - V, bent, rough * rough));
     }
     float lod = rough * (float)(prefilter_levels - 1);
-    float3 spec = env_chain(ggx_chain, env_w, env_h, prefilter_levels, R, env_rotation, lod);
-    float3 irr = env_chain(irradiance, irr_w, irr_h, 1, N, env_rotation, 0.0f);
+    float3 spec = env_chain(ggx_chain, env_w, env_h, BRDFCL_PREFILTER_CAP_W, BRDFCL_PREFILTER_CAP_H, prefilter_levels, R,
+                            env_rotation, lod);
+    float3 irr = env_chain(irradiance, irr_w, irr_h, irr_w, irr_h, 1, N, env_rotation, 0.0f);
     /* An anisotropic lobe's albedo depends on both alphas and on the view's azimuth, which no
        isotropic look-up matches (10 % off at strength 1): it has its own table. Its radiance is
        still read at the base roughness about the bent normal (002). */
@@ -195,7 +197,8 @@ __kernel void shade(__global const float* restrict gb, int width, int height, br
     if (sheen_max > 0.0f) {
       sheen_albedo_row row = E_SheenAlbedoRow(sheen_e_size, q.sheen_roughness);
       float e = E_SheenAlbedo(sheen_e, sheen_e_size, row, nv);
-      float3 sheen_light = env_chain(charlie_chain, env_w, env_h, prefilter_levels, R, env_rotation,
+      float3 sheen_light = env_chain(charlie_chain, charlie_w, charlie_h, charlie_w, charlie_h, prefilter_levels, R,
+                                     env_rotation,
                                      q.sheen_roughness * (float)(prefilter_levels - 1));
       ibl = (float3)(q.sheen_color[0], q.sheen_color[1], q.sheen_color[2]) * sheen_light * e + (1.0f - sheen_max * e) * ibl;
     }
@@ -204,7 +207,8 @@ __kernel void shade(__global const float* restrict gb, int width, int height, br
     if (q.clearcoat > 0.0f) {
       float3 Rc = 2.0f * dot(Nc, V) * Nc - V;
       float2 abc = lut2(dfg, dfg_size, ncv, q.clearcoat_roughness);
-      float3 coat_light = env_chain(ggx_chain, env_w, env_h, prefilter_levels, Rc, env_rotation,
+      float3 coat_light = env_chain(ggx_chain, env_w, env_h, BRDFCL_PREFILTER_CAP_W, BRDFCL_PREFILTER_CAP_H, prefilter_levels,
+                                    Rc, env_rotation,
                                     q.clearcoat_roughness * (float)(prefilter_levels - 1));
       ibl = (1.0f - coat) * ibl + coat * coat_light * (abc.x + abc.y);
     }

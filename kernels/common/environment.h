@@ -30,22 +30,25 @@ static inline float3 env_bilinear(__global const float* base, int w, int h, floa
   return mix(a, b, fy);
 }
 
-/* A chain of `levels` levels, level k of size max(w0 >> k, 8) x max(h0 >> k, 4), stored one
-   after another; `lod` in [0, levels - 1] blends the two nearest. */
-static inline int env_level_w(int w0, int k) { return max(w0 >> k, 8); }
-static inline int env_level_h(int h0, int k) { return max(h0 >> k, 4); }
+/* A chain of `levels` levels stored one after another: level 0 of max(w0, 8) x max(h0, 4), level
+   k >= 1 of max(min(w0, cap_w) >> k, 8) x max(min(h0, cap_h) >> k, 4). The cap lets a prefiltered
+   chain keep level 0 (the mirror) at the map's resolution while its blurred levels stay as small
+   as their lobes allow; a plain mip chain passes cap = w0, h0. `lod` in [0, levels - 1] blends
+   the two nearest levels. host/src/render/shader.cpp lays the chains out by the same rule. */
+static inline int env_level_w(int w0, int cap_w, int k) { return k == 0 ? max(w0, 8) : max(min(w0, cap_w) >> k, 8); }
+static inline int env_level_h(int h0, int cap_h, int k) { return k == 0 ? max(h0, 4) : max(min(h0, cap_h) >> k, 4); }
 
-static inline float3 env_chain(__global const float* chain, int w0, int h0, int levels, float3 d, float rotation,
-                               float lod) {
+static inline float3 env_chain(__global const float* chain, int w0, int h0, int cap_w, int cap_h, int levels, float3 d,
+                               float rotation, float lod) {
   float2 uv = env_uv(d, rotation);
   lod = clamp(lod, 0.0f, (float)(levels - 1));
   int k0 = min((int)lod, levels - 1), k1 = min(k0 + 1, levels - 1);
   __global const float* p = chain;
-  for (int k = 0; k < k0; ++k) p += 3 * env_level_w(w0, k) * env_level_h(h0, k);
-  float3 a = env_bilinear(p, env_level_w(w0, k0), env_level_h(h0, k0), uv);
+  for (int k = 0; k < k0; ++k) p += 3 * env_level_w(w0, cap_w, k) * env_level_h(h0, cap_h, k);
+  float3 a = env_bilinear(p, env_level_w(w0, cap_w, k0), env_level_h(h0, cap_h, k0), uv);
   if (k1 == k0) return a;
-  __global const float* q = p + 3 * env_level_w(w0, k0) * env_level_h(h0, k0);
-  float3 b = env_bilinear(q, env_level_w(w0, k1), env_level_h(h0, k1), uv);
+  __global const float* q = p + 3 * env_level_w(w0, cap_w, k0) * env_level_h(h0, cap_h, k0);
+  float3 b = env_bilinear(q, env_level_w(w0, cap_w, k1), env_level_h(h0, cap_h, k1), uv);
   return mix(a, b, lod - (float)k0);
 }
 

@@ -60,6 +60,14 @@ typedef struct brdfcl_sphere {
 /* Equirectangular environment: direction d (world, +Y up) -> u = 1/2 + atan2(d.x, -d.z) / 2pi
    (+ rotation / 2pi), v = acos(d.y) / pi, v = 0 at the top row. */
 
+/* Prefiltered environments (host/src/render/shader.cpp): the GGX chain keeps level 0 (the mirror)
+   at the map's size and computes levels >= 1 as for a map of at most CAP_W x CAP_H; the Charlie
+   chain (sheen lobes are broad at every roughness) starts from at most CHARLIE_W x CHARLIE_H. */
+#define BRDFCL_PREFILTER_CAP_W 512
+#define BRDFCL_PREFILTER_CAP_H 256
+#define BRDFCL_CHARLIE_W 128
+#define BRDFCL_CHARLIE_H 64
+
 /* The anisotropic split-sum table (kernels/aniso_dfg.cl): texels over N.V x perceptual roughness
    x anisotropy strength x view azimuth from the anisotropy direction in [0, pi/2], N.V fastest,
    A and B interleaved. */

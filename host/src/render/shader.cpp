@@ -32,7 +32,7 @@ constexpr int kIrradianceW = 64, kIrradianceH = 32;
 constexpr int kDfgSize = 64, kFresnelLambertSize = 64;
 // Part of the disk cache key of prefiltered environments: bump when the chain layout, the sample
 // counts or the levels change (the kernel source is in the key already).
-constexpr const char* kPrefilterVersion = "chains6 ggx1/128 charlie256 irr512 v1";
+constexpr const char* kPrefilterVersion = "chains6 ggx1/128 cap512x256 charlie256 at128x64 irr512 v2";
 
 using V3 = std::array<float, 3>;
 V3 sub(V3 a, V3 b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
@@ -108,8 +108,20 @@ std::vector<brdfcl_light> packLights(const Scene& s) {
   return out;
 }
 
-int levelW(int w0, int k) { return std::max(w0 >> k, 8); }
-int levelH(int h0, int k) { return std::max(h0 >> k, 4); }
+// kernels/common/environment.h's chain layout (env_level_w/h), which the kernels index by.
+int levelW(int w0, int capW, int k) { return k == 0 ? std::max(w0, 8) : std::max(std::min(w0, capW) >> k, 8); }
+int levelH(int h0, int capH, int k) { return k == 0 ? std::max(h0, 4) : std::max(std::min(h0, capH) >> k, 4); }
+
+// The Charlie chain's level-0 size for a map of w x h (kernels/common/shading_layout.h).
+int charlieW(int w) { return std::min(w, BRDFCL_CHARLIE_W); }
+int charlieH(int h) { return std::min(h, BRDFCL_CHARLIE_H); }
+
+// Floats of a prefiltered chain of kPrefilterLevels levels.
+std::size_t chainFloatsOf(int w0, int h0, int capW, int capH) {
+  std::size_t n = 0;
+  for (int k = 0; k < kPrefilterLevels; ++k) n += 3 * std::size_t(levelW(w0, capW, k)) * levelH(h0, capH, k);
+  return n;
+}
 
 // G-buffer channels -> the planes of kernels/common/shading_layout.h, defaults for absent ones.
 // Fills `planes`, reusing its memory: at 512x512 the planes pass glibc's 32 MiB mmap threshold,
@@ -421,10 +433,14 @@ std::vector<float> prefilterEnvironment(Runtime& rt, const std::vector<float>& e
 
   // Prefiltered chains: level k of kPrefilterLevels at roughness k / (levels - 1).
   cl::Kernel pre(prefilterProgram, "env_prefilter");
+  // GGX level 0 is the mirror at the map's size; its blurred levels and the whole Charlie chain
+  // are no larger than their lobes need, which keeps a 1k or 4k map's first use short.
   auto prefilterChain = [&](int kind) {
     std::vector<float> all;
+    const int w0 = kind == 0 ? envW : charlieW(envW), h0 = kind == 0 ? envH : charlieH(envH);
+    const int capW = kind == 0 ? BRDFCL_PREFILTER_CAP_W : w0, capH = kind == 0 ? BRDFCL_PREFILTER_CAP_H : h0;
     for (int k = 0; k < kPrefilterLevels; ++k) {
-      const int w = levelW(envW, k), h = levelH(envH, k);
+      const int w = levelW(w0, capW, k), h = levelH(h0, capH, k);
       cl::Buffer out(ctx, CL_MEM_WRITE_ONLY, 3 * std::size_t(w) * h * 4);
       pre.setArg(0, chain);
       pre.setArg(1, envW);
@@ -487,9 +503,10 @@ std::shared_ptr<const PreparedLight> prepareLight(Runtime& rt, const Environment
     const std::uint64_t prefilterKey = detail::contentHash(
         env, detail::contentHash(fmt::format("{}|{}|{}x{}|{}|{}x{}", kernelSource("ibl_prefilter.cl"), kPrefilterVersion,
                                              s.envW, s.envH, device, kIrradianceW, kIrradianceH)));
-    std::size_t chainFloats = 0;
-    for (int k = 0; k < kPrefilterLevels; ++k) chainFloats += 3 * std::size_t(levelW(s.envW, k)) * levelH(s.envH, k);
-    std::vector<float> arrays(2 * chainFloats + 3 * kIrradianceW * kIrradianceH);
+    const std::size_t ggxFloats = chainFloatsOf(s.envW, s.envH, BRDFCL_PREFILTER_CAP_W, BRDFCL_PREFILTER_CAP_H);
+    const std::size_t charlieFloats =
+        chainFloatsOf(charlieW(s.envW), charlieH(s.envH), charlieW(s.envW), charlieH(s.envH));
+    std::vector<float> arrays(ggxFloats + charlieFloats + 3 * kIrradianceW * kIrradianceH);
     const std::string prefilterName = fmt::format("env_{}x{}_{:016x}.f32", s.envW, s.envH, prefilterKey);
     if (!detail::loadCachedFloats(prefilterName, arrays)) {
       arrays = prefilterEnvironment(rt, env, s.envW, s.envH);
@@ -499,9 +516,9 @@ std::shared_ptr<const PreparedLight> prepareLight(Runtime& rt, const Environment
       return readOnly(ctx, std::vector<float>(arrays.begin() + std::ptrdiff_t(begin),
                                               arrays.begin() + std::ptrdiff_t(begin + count)));
     };
-    s.ggx = part(0, chainFloats);
-    s.charlie = part(chainFloats, chainFloats);
-    s.irradiance = part(2 * chainFloats, 3 * kIrradianceW * kIrradianceH);
+    s.ggx = part(0, ggxFloats);
+    s.charlie = part(ggxFloats, charlieFloats);
+    s.irradiance = part(ggxFloats + charlieFloats, 3 * kIrradianceW * kIrradianceH);
 
     std::vector<float> dfg(2 * kDfgSize * kDfgSize);
     const std::string dfgName =
@@ -577,6 +594,8 @@ Image Shader::shade(const GBuffer& g) {
     k.setArg(a++, s.light->irradiance);
     k.setArg(a++, s.light->envW);
     k.setArg(a++, s.light->envH);
+    k.setArg(a++, charlieW(s.light->envW));
+    k.setArg(a++, charlieH(s.light->envH));
     k.setArg(a++, kPrefilterLevels);
     k.setArg(a++, kIrradianceW);
     k.setArg(a++, kIrradianceH);
