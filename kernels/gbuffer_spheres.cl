@@ -4,11 +4,13 @@
    parameters. Pixels that miss every sphere get mask 0. */
 #include "common/shading_layout.h"
 
+/* One launch covers the band of rows [y0, y0 + band_h) of a width x height image; gb holds the
+   band's planes (width * band_h floats each), so no buffer exceeds the device's largest allocation. */
 __kernel void gbuffer_spheres(__global const brdfcl_sphere* restrict spheres, int sphere_count, int width,
-                              int height, brdfcl_camera cam, __global float* restrict gb) {
-  int x = get_global_id(0), y = get_global_id(1);
-  if (x >= width || y >= height) return;
-  const int np = width * height, i = y * width + x;
+                              int height, int y0, int band_h, brdfcl_camera cam, __global float* restrict gb) {
+  int x = get_global_id(0), y = y0 + (int)get_global_id(1);
+  if (x >= width || y >= height || y >= y0 + band_h) return;
+  const int np = width * band_h, i = (y - y0) * width + x;
   for (int k = 0; k < GB_PLANES; ++k) gb[k * np + i] = 0.0f;
   float sx = (2.0f * ((float)x + 0.5f) / (float)width - 1.0f) * cam.tan_half_fov * cam.aspect;
   float sy = (1.0f - 2.0f * ((float)y + 0.5f) / (float)height) * cam.tan_half_fov;

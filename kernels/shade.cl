@@ -65,7 +65,8 @@ static inline void frame_from_normal(float3 n, float3* t, float3* b) {
 
 static inline vec3w to_lanes(float3 v) { vec3w o = {v.x, v.y, v.z}; return o; }
 
-__kernel void shade(__global const float* restrict gb, int width, int height, brdfcl_camera cam,
+/* One launch shades the band of rows [y0, y0 + band_h): gb and out hold the band's planes only. */
+__kernel void shade(__global const float* restrict gb, int width, int height, int y0, int band_h, brdfcl_camera cam,
                     __global const brdfcl_light* restrict lights, int light_count,
                     __global const float* restrict background, __global const float* restrict ggx_chain,
                     __global const float* restrict charlie_chain, __global const float* restrict irradiance,
@@ -75,9 +76,9 @@ __kernel void shade(__global const float* restrict gb, int width, int height, br
                     __global const float* restrict sheen_e,
                     int sheen_e_size, __global const float* restrict fresnel_lambert, int fl_size,
                     __global float* restrict out) {
-  int x = get_global_id(0), y = get_global_id(1);
-  if (x >= width || y >= height) return;
-  const int np = width * height, i = y * width + x;
+  int x = get_global_id(0), y = y0 + (int)get_global_id(1);
+  if (x >= width || y >= height || y >= y0 + band_h) return;
+  const int np = width * band_h, i = (y - y0) * width + x;
 #define GB(k) gb[(k) * np + i]
   const float3 eye = (float3)(cam.position[0], cam.position[1], cam.position[2]);
   const float3 forward = (float3)(cam.forward[0], cam.forward[1], cam.forward[2]);

@@ -180,7 +180,7 @@ void addRenderCommands(CLI::App& app) {
       if (!a->gltf.path.empty()) {
         if (cmd->count("--scene")) throw Error("--scene and --gltf are alternatives; give one");
         const LoadedAsset l = loadAsset(a->gltf);
-        checkFrameFits(FrameJob::GBuffer, l.width, l.height, usableHostMemory(), nullptr);
+        checkFrameFits(FrameJob::GBuffer, l.width, l.height, usableHostMemory());
         gltf::Raycaster raycaster(l.asset);
         writeGBuffer(a->out, raycaster.trace(l.view, l.width, l.height));
         return;
@@ -189,8 +189,8 @@ void addRenderCommands(CLI::App& app) {
       int w = 768, h = 768;
       if (!a->gltf.size.empty()) parseSize(a->gltf.size, w, h);
       const Scene scene = builtinScene(a->scene);
+      checkFrameFits(FrameJob::GBuffer, w, h, usableHostMemory());
       Runtime rt(a->device);
-      checkFrameFits(FrameJob::GBuffer, w, h, usableHostMemory(), &rt.info());
       writeGBuffer(a->out, renderSpheresGBuffer(rt, scene, w, h));
     });
   }
@@ -232,8 +232,8 @@ void addRenderCommands(CLI::App& app) {
       const Scene scene = readScene(a->scene);
       if (const std::string w = shadeCameraWarning(a->scene, scene, a->gbuffer, g); !w.empty())
         printWarning(w);
+      checkFrameFits(FrameJob::Shade, g.width, g.height, usableHostMemory(), a->gbuffer);
       Runtime rt(a->device);
-      checkFrameFits(FrameJob::Shade, g.width, g.height, usableHostMemory(), &rt.info(), a->gbuffer);
       Shader shader(rt, scene);
       writeImages(shader.shade(g), exr, png, a->exposure);
     });
@@ -279,8 +279,8 @@ void addRenderCommands(CLI::App& app) {
         const LoadedAsset l = loadAsset(a->gltf);
         const Scene lighting =
             gltf::frameLighting(l.asset, l.view, a->lighting.lights, environment, a->lighting.environmentGiven);
+        checkFrameFits(FrameJob::Render, l.width, l.height, usableHostMemory());
         Runtime rt(a->device);
-        checkFrameFits(FrameJob::Render, l.width, l.height, usableHostMemory(), &rt.info());
         writeImages(renderGltf(rt, l, lighting, a->spp, a->gbuffer), exr, png, a->exposure);
         return;
       }
@@ -291,8 +291,8 @@ void addRenderCommands(CLI::App& app) {
       Scene scene = builtinScene(a->scene);
       if (a->lighting.environmentGiven) scene.environment = environment;
       gltf::applyLightsOption(scene, a->lighting.lights, a->lighting.environmentGiven);
+      checkFrameFits(FrameJob::Render, w, h, usableHostMemory());
       Runtime rt(a->device);
-      checkFrameFits(FrameJob::Render, w, h, usableHostMemory(), &rt.info());
       const GBuffer g = renderSpheresGBuffer(rt, scene, w, h);
       if (!a->gbuffer.empty()) writeGBuffer(a->gbuffer, g);
       Shader shader(rt, scene);
@@ -333,8 +333,8 @@ void addRenderCommands(CLI::App& app) {
       Environment studio;
       studio.builtinKind = "studio";
       const Scene lighting = gltf::frameLighting(l.asset, l.view, "gltf", studio, true);
+      checkFrameFits(FrameJob::Render, l.width, l.height, usableHostMemory());
       Runtime rt(a->device);
-      checkFrameFits(FrameJob::Render, l.width, l.height, usableHostMemory(), &rt.info());
       writeImages(renderGltf(rt, l, lighting, a->spp, ""), exr, png, a->exposure);
       auto abs = [](const std::string& p) { return std::filesystem::absolute(p).string(); };
       fmt::print("brdfcl demo: wrote the sphere sweep as a glTF asset and rendered it on {}\n  {}\n  {}\n  {}\n"

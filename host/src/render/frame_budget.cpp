@@ -6,13 +6,14 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
 
 #include <fmt/format.h>
 
 #include "brdfcl/error.hpp"
-#include "common/shading_layout.h"
 
 namespace brdfcl {
 
@@ -44,12 +45,8 @@ std::uint64_t cgroupLimit() {
 }
 }  // namespace
 
-FrameNeeds frameNeeds(FrameJob job, int width, int height) {
-  const std::uint64_t px = std::uint64_t(width) * std::uint64_t(height);
-  FrameNeeds n;
-  n.hostBytes = kBaseBytes + px * hostBytesPerPixel(job);
-  n.deviceBuffer = px * GB_PLANES * sizeof(float);
-  return n;
+std::uint64_t frameHostBytes(FrameJob job, int width, int height) {
+  return kBaseBytes + std::uint64_t(width) * std::uint64_t(height) * hostBytesPerPixel(job);
 }
 
 std::uint64_t usableHostMemory() {
@@ -59,27 +56,31 @@ std::uint64_t usableHostMemory() {
   return std::min(limit, cgroupLimit());
 }
 
-void checkFrameFits(FrameJob job, int width, int height, std::uint64_t hostLimit, const DeviceInfo* device,
-                    const std::string& option) {
-  const FrameNeeds need = frameNeeds(job, width, height);
-  const bool hostFits = need.hostBytes <= hostLimit;
-  const bool deviceFits = !device || need.deviceBuffer <= device->maxAlloc;
-  if (hostFits && deviceFits) return;
-  // The largest pixel count both limits allow, then the same aspect at that count.
-  const FrameNeeds perPixel = frameNeeds(job, 1, 1);
-  const std::uint64_t hostPx = hostLimit > kBaseBytes ? (hostLimit - kBaseBytes) / (perPixel.hostBytes - kBaseBytes) : 0;
-  std::uint64_t maxPx = hostPx;
-  if (device) maxPx = std::min<std::uint64_t>(maxPx, device->maxAlloc / perPixel.deviceBuffer);
+void checkFrameFits(FrameJob job, int width, int height, std::uint64_t hostLimit, const std::string& option) {
+  const std::uint64_t need = frameHostBytes(job, width, height);
+  if (need <= hostLimit) return;
+  // The largest pixel count the limit allows, then the same aspect at that count.
+  const std::uint64_t maxPx = hostLimit > kBaseBytes ? (hostLimit - kBaseBytes) / hostBytesPerPixel(job) : 0;
   const double scale = std::sqrt(double(maxPx) / (double(width) * double(height)));
   const int fitW = std::max(1, int(std::floor(width * scale))), fitH = std::max(1, int(std::floor(height * scale)));
-  std::string why;
-  if (!hostFits)
-    why = fmt::format("about {:.1f} GiB of memory, but this process may use {:.1f} GiB", gib(need.hostBytes), gib(hostLimit));
-  else
-    why = fmt::format("a {:.1f} GiB G-buffer on the device, but '{}' allows {:.1f} GiB per buffer", gib(need.deviceBuffer),
-                      device->name, gib(device->maxAlloc));
-  throw Error(fmt::format("{} {}x{} needs {}; the largest size of that shape that fits is {}x{}", option, width, height,
-                          why, fitW, fitH));
+  throw Error(fmt::format("{} {}x{} needs about {:.1f} GiB of memory, but this process may use {:.1f} GiB; the largest "
+                          "size of that shape that fits is {}x{}",
+                          option, width, height, gib(need), gib(hostLimit), fitW, fitH));
+}
+
+int bandRows(const DeviceInfo& device, int width, std::size_t bytesPerPixel) {
+  std::uint64_t limit = device.maxAlloc;
+  if (const char* v = std::getenv("BRDFCL_MAX_LAUNCH_BYTES"); v && *v) {
+    char* end = nullptr;
+    errno = 0;
+    const unsigned long long n = std::strtoull(v, &end, 10);
+    if (*end != '\0' || errno != 0 || n == 0 || v[0] == '-')
+      throw Error(fmt::format("BRDFCL_MAX_LAUNCH_BYTES={} is not a positive number of bytes; unset it or give e.g. 1048576",
+                              v));
+    limit = std::min<std::uint64_t>(limit, n);
+  }
+  const std::uint64_t row = std::uint64_t(width) * bytesPerPixel;
+  return int(std::clamp<std::uint64_t>(limit / std::max<std::uint64_t>(row, 1), 1, 1u << 30));
 }
 
 }  // namespace brdfcl

@@ -12,6 +12,7 @@
 
 #include "brdfcl/error.hpp"
 #include "brdfcl/evaluator.hpp"
+#include "brdfcl/frame_budget.hpp"
 #include "brdfcl/lut.hpp"
 #include "io/disk_cache.hpp"
 #include "render/aniso_dfg.hpp"
@@ -264,16 +265,26 @@ GBuffer renderSpheresGBuffer(Runtime& rt, const Scene& scene, int width, int hei
     auto program = rt.program("gbuffer_spheres.cl");
     cl::Buffer bs(rt.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, spheres.size() * sizeof(brdfcl_sphere),
                   spheres.data());
-    cl::Buffer out(rt.context(), CL_MEM_WRITE_ONLY, planes.size() * 4);
+    const int band = bandRows(rt.info(), width, GB_PLANES * sizeof(float));
+    cl::Buffer out(rt.context(), CL_MEM_WRITE_ONLY, std::size_t(GB_PLANES) * width * std::min(band, height) * 4);
     cl::Kernel k(program, "gbuffer_spheres");
-    k.setArg(0, bs);
-    k.setArg(1, int(spheres.size()));
-    k.setArg(2, width);
-    k.setArg(3, height);
-    k.setArg(4, cameraFor(scene, width, height));
-    k.setArg(5, out);
-    rt.queue().enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(std::size_t(width), std::size_t(height)));
-    rt.queue().enqueueReadBuffer(out, CL_TRUE, 0, planes.size() * 4, planes.data());
+    for (int y0 = 0; y0 < height; y0 += band) {
+      const int rows = std::min(band, height - y0);
+      const std::size_t bandPixels = std::size_t(width) * rows;
+      k.setArg(0, bs);
+      k.setArg(1, int(spheres.size()));
+      k.setArg(2, width);
+      k.setArg(3, height);
+      k.setArg(4, y0);
+      k.setArg(5, rows);
+      k.setArg(6, cameraFor(scene, width, height));
+      k.setArg(7, out);
+      rt.queue().enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(std::size_t(width), std::size_t(rows)));
+      for (int plane = 0; plane < GB_PLANES; ++plane)
+        rt.queue().enqueueReadBuffer(out, CL_FALSE, plane * bandPixels * 4, bandPixels * 4,
+                                     planes.data() + plane * np + std::size_t(y0) * width);
+      rt.queue().finish();
+    }
   } catch (const cl::Error&) {
     rethrowOpenCL("ray-casting the spheres scene");
   }
@@ -570,13 +581,15 @@ Image Shader::shade(const GBuffer& g) {
   std::vector<float> out(3 * np);
   try {
     const auto& ctx = s.rt.context();
-    // The device copy of the planes is kept between frames of one size, like the planes themselves.
-    if (s.planesOnDevice.first != planes.size()) {
-      s.planesOnDevice = {planes.size(), cl::Buffer(ctx, CL_MEM_READ_ONLY, planes.size() * 4)};
+    // Bands of rows keep every buffer below the device's largest allocation (any image size the
+    // host can hold); the device copy of a band is kept between frames of one size.
+    const int band = std::min(bandRows(s.rt.info(), g.width, GB_PLANES * sizeof(float)), g.height);
+    const std::size_t bandFloats = std::size_t(GB_PLANES) * g.width * band;
+    if (s.planesOnDevice.first != bandFloats) {
+      s.planesOnDevice = {bandFloats, cl::Buffer(ctx, CL_MEM_READ_ONLY, bandFloats * 4)};
     }
     cl::Buffer& bg = s.planesOnDevice.second;
-    s.rt.queue().enqueueWriteBuffer(bg, CL_FALSE, 0, planes.size() * 4, planes.data());
-    cl::Buffer bo(ctx, CL_MEM_WRITE_ONLY, out.size() * 4);
+    cl::Buffer bo(ctx, CL_MEM_WRITE_ONLY, 3 * std::size_t(g.width) * band * 4);
     cl::Kernel k(s.program, "shade");
     // Held until the launch is done: a kernel argument does not keep its buffer alive.
     const cl::Buffer aniso = anisotropicDfgFor(s.rt, g);
@@ -584,6 +597,8 @@ Image Shader::shade(const GBuffer& g) {
     k.setArg(a++, bg);
     k.setArg(a++, g.width);
     k.setArg(a++, g.height);
+    const int bandArg = a;  // y0, then the band's rows: set per band below
+    a += 2;
     k.setArg(a++, s.scene.hasCamera || !g.camera ? cameraFor(s.scene, g.width, g.height)
                                                   : cameraFor(*g.camera, g.width, g.height));
     k.setArg(a++, s.lights);
@@ -608,8 +623,19 @@ Image Shader::shade(const GBuffer& g) {
     k.setArg(a++, s.light->fresnelLambert);
     k.setArg(a++, kFresnelLambertSize);
     k.setArg(a++, bo);
-    s.rt.queue().enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(std::size_t(g.width), std::size_t(g.height)));
-    s.rt.queue().enqueueReadBuffer(bo, CL_TRUE, 0, out.size() * 4, out.data());
+    auto& q = s.rt.queue();
+    for (int y0 = 0; y0 < g.height; y0 += band) {
+      const int rows = std::min(band, g.height - y0);
+      const std::size_t bandPixels = std::size_t(g.width) * rows, first = std::size_t(y0) * g.width;
+      for (int plane = 0; plane < GB_PLANES; ++plane)
+        q.enqueueWriteBuffer(bg, CL_FALSE, plane * bandPixels * 4, bandPixels * 4, planes.data() + plane * np + first);
+      k.setArg(bandArg, y0);
+      k.setArg(bandArg + 1, rows);
+      q.enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(std::size_t(g.width), std::size_t(rows)));
+      for (int c = 0; c < 3; ++c)
+        q.enqueueReadBuffer(bo, CL_FALSE, c * bandPixels * 4, bandPixels * 4, out.data() + c * np + first);
+      q.finish();
+    }
   } catch (const cl::Error&) {
     rethrowOpenCL("shading the G-buffer");
   }
