@@ -62,8 +62,11 @@ brdfcl::Image renderFrame(Shader& shader, const Raycaster& raycaster, const View
                   const std::function<void(int, int)>& progress) {
   const auto offsets = subpixelOffsets(spp);
   brdfcl::Image sum;
+  // One G-buffer for every sample: traced into again, its pages are not faulted in per sample.
+  GBuffer g;
   for (std::size_t k = 0; k < offsets.size(); ++k) {
-    const brdfcl::Image one = shader.shade(raycaster.trace(view, width, height, offsets[k][0], offsets[k][1]));
+    raycaster.trace(view, width, height, offsets[k][0], offsets[k][1], g);
+    const brdfcl::Image one = shader.shade(g);
     if (k == 0) {
       sum = one;
     } else {
