@@ -4,6 +4,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -125,11 +126,16 @@ LoadedAsset loadAsset(const GltfArgs& a) {
   return l;
 }
 
-// Progress on stderr only when a person is watching it.
-std::function<void(int, int)> progressLine(const char* what) {
+// Progress on stderr only when a person is watching it: "<what>: <unit> 3/12, 0:41 left". A
+// single step has nothing to report.
+std::function<void(int, int)> progressLine(const char* what, const char* unit) {
   if (!isatty(STDERR_FILENO)) return {};
-  return [what](int done, int total) {
-    std::fprintf(stderr, "\r%s: sample %d/%d", what, done, total);
+  const auto start = std::chrono::steady_clock::now();
+  return [what, unit, start](int done, int total) {
+    if (total < 2) return;
+    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const int left = int(std::lround(elapsed / done * (total - done)));
+    std::fprintf(stderr, "\r%s: %s %d/%d, %d:%02d left ", what, unit, done, total, left / 60, left % 60);
     if (done == total) std::fputc('\n', stderr);
     std::fflush(stderr);
   };
@@ -156,7 +162,7 @@ struct LightingArgs {
 Image renderGltf(Runtime& rt, const LoadedAsset& l, const Scene& lighting, int spp, const std::string& gbufferOut) {
   gltf::Raycaster raycaster(l.asset);
   Shader shader(rt, lighting);
-  const Image img = gltf::renderFrame(shader, raycaster, l.view, l.width, l.height, spp, progressLine("brdfcl render"));
+  const Image img = gltf::renderFrame(shader, raycaster, l.view, l.width, l.height, spp, progressLine("brdfcl render", "sample"));
   if (!gbufferOut.empty()) writeGBuffer(gbufferOut, raycaster.trace(l.view, l.width, l.height));
   return img;
 }
@@ -235,7 +241,7 @@ void addRenderCommands(CLI::App& app) {
       checkFrameFits(FrameJob::Shade, g.width, g.height, usableHostMemory(), a->gbuffer);
       Runtime rt(a->device);
       Shader shader(rt, scene);
-      writeImages(shader.shade(g), exr, png, a->exposure);
+      writeImages(shader.shade(g, progressLine("brdfcl shade", "band")), exr, png, a->exposure);
     });
   }
   {
@@ -296,7 +302,7 @@ void addRenderCommands(CLI::App& app) {
       const GBuffer g = renderSpheresGBuffer(rt, scene, w, h);
       if (!a->gbuffer.empty()) writeGBuffer(a->gbuffer, g);
       Shader shader(rt, scene);
-      writeImages(shader.shade(g), exr, png, a->exposure);
+      writeImages(shader.shade(g, progressLine("brdfcl render", "band")), exr, png, a->exposure);
     });
   }
   {

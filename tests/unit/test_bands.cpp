@@ -4,6 +4,8 @@
 
 #include <cstdlib>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "brdfcl/error.hpp"
 #include "brdfcl/frame_budget.hpp"
@@ -53,6 +55,21 @@ TEST(Bands, GBufferAndShadingAreBitIdenticalForAnyBandHeight) {
     EXPECT_EQ(banded.anisotropyRotation, whole.anisotropyRotation) << limit;
     EXPECT_EQ(Shader(runtime(), scene).shade(banded).rgb, shadedWhole.rgb) << limit;
   }
+}
+
+// Long frames report each band as it is done, for the CLI's progress line.
+TEST(Bands, ShadeReportsEachBand) {
+  const Scene scene = spheresScene();
+  const GBuffer g = renderSpheresGBuffer(runtime(), scene, 61, 37);
+  std::vector<std::pair<int, int>> calls;
+  {
+    LaunchLimit l("100000");  // 12 rows of 61 pixels x 132 bytes per launch: 4 bands
+    Shader(runtime(), scene).shade(g, [&](int done, int total) { calls.emplace_back(done, total); });
+  }
+  EXPECT_EQ(calls, (std::vector<std::pair<int, int>>{{1, 4}, {2, 4}, {3, 4}, {4, 4}}));
+  calls.clear();
+  Shader(runtime(), scene).shade(g, [&](int done, int total) { calls.emplace_back(done, total); });
+  EXPECT_EQ(calls, (std::vector<std::pair<int, int>>{{1, 1}}));
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 // "spheres" scene ray-cast on the device. The shader evaluates the same BRDF layers as batch
 // evaluation (kernels/brdf/material.h) and prepares its environment maps and tables once.
 #pragma once
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -52,7 +53,9 @@ class Shader {
   // Not for concurrent calls on one Shader: it keeps its G-buffer planes between frames.
   // Pixels without V look from the scene's camera when it has one (Scene::hasCamera), else from
   // the G-buffer's (GBuffer::camera), else from the scene's stand-in defaults.
-  Image shade(const GBuffer& g);
+  // `progress` (if set) hears (bands done, bands) after each band of rows: one band unless the
+  // frame's planes exceed the device's largest allocation (see bandRows).
+  Image shade(const GBuffer& g, const std::function<void(int, int)>& progress = {});
 
  private:
   struct State;

@@ -570,7 +570,7 @@ cl::Buffer anisotropicDfgFor(Runtime& rt, const GBuffer& g) {
 }
 }  // namespace
 
-Image Shader::shade(const GBuffer& g) {
+Image Shader::shade(const GBuffer& g, const std::function<void(int, int)>& progress) {
   auto& s = *s_;
   auto& planes = s.planes;
   gbufferPlanes(g, planes);
@@ -635,6 +635,7 @@ Image Shader::shade(const GBuffer& g) {
       for (int c = 0; c < 3; ++c)
         q.enqueueReadBuffer(bo, CL_FALSE, c * bandPixels * 4, bandPixels * 4, out.data() + c * np + first);
       q.finish();
+      if (progress) progress(y0 / band + 1, (g.height + band - 1) / band);
     }
   } catch (const cl::Error&) {
     rethrowOpenCL("shading the G-buffer");
