@@ -3,8 +3,10 @@
 // to the C++ peers (scalar loop, OpenMP-SIMD loop) and to the STREAM-triad memory bound, in one process.
 #include <algorithm>
 #include <chrono>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 
 #include <fmt/format.h>
@@ -44,14 +46,14 @@ struct BenchArgs {
 // (bench/peers/mitsuba_peer.py) writes so that both sides evaluate the very same pairs.
 std::vector<float> readPairs(const std::string& path) {
   std::ifstream in(path, std::ios::binary | std::ios::ate);
-  if (!in) throw Error(fmt::format("cannot open --pairs '{}'", path));
+  if (!in || in.tellg() < 0) throw Error(fmt::format("--pairs '{}': cannot read: {}", path, std::strerror(errno)));
   const auto bytes = std::size_t(in.tellg());
   if (bytes == 0 || bytes % 24 != 0 || bytes / 24 > (std::size_t(1) << 28))
-    throw Error(fmt::format("--pairs '{}' holds {} bytes; expected 6 float32 planes of 1 to 268435456 values", path, bytes));
+    throw Error(fmt::format("--pairs '{}' holds {} bytes; expected six float32 planes of 1 to 268435456 values", path, bytes));
   std::vector<float> planes(bytes / 4);
   in.seekg(0);
   in.read(reinterpret_cast<char*>(planes.data()), std::streamsize(bytes));
-  if (!in) throw Error(fmt::format("cannot read --pairs '{}'", path));
+  if (!in) throw Error(fmt::format("--pairs '{}': cannot read: {}", path, std::strerror(errno)));
   return planes;
 }
 
