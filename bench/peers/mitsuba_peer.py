@@ -135,7 +135,7 @@ class MitsubaSide:
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__)
+    ap = argparse.ArgumentParser(description="brdfcl against Mitsuba 3 on the same direction pairs")
     ap.add_argument("--brdfcl", default="build/bin/brdfcl")
     ap.add_argument("--sizes", default="262144,4194304", help="pairs per run, comma-separated")
     ap.add_argument("--runs", type=int, default=7, help="timed runs per side per round; median reported")
@@ -162,7 +162,6 @@ def main():
     results = []
     print(f"brdfcl vs Mitsuba {mi.__version__} (llvm_ad_rgb, {dr.thread_count()} threads), one material, "
           f"median of {a.runs} runs, {a.rounds} interleaved rounds")
-    print(f"  {'lobe':<10}{'Mitsuba bsdf':<54}{'pairs':>9}{'brdfcl':>10}{'Mitsuba':>10}  brdfcl/Mitsuba (rounds)")
     with tempfile.TemporaryDirectory() as tmp:
         if a.check:
             planes = make_pairs(65536, a.seed)
@@ -171,6 +170,7 @@ def main():
             total, med = specular_agreement(mi, dr, a.brdfcl, m, planes, tmp)
             print(f"  specular values, brdfcl f*N.L vs roughconductor: sum|difference|/sum|f| {total:.3f}, "
                   f"median relative difference where f > 1% of its peak {med:.3f}")
+        print(f"  {'lobe':<10}{'Mitsuba bsdf':<54}{'pairs':>9}{'brdfcl':>10}{'Mitsuba':>10}  brdfcl/Mitsuba (rounds)")
         for n in [int(x) for x in a.sizes.split(",")]:
             planes = make_pairs(n, a.seed)
             path = os.path.join(tmp, f"pairs-{n}.f32")
