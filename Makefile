@@ -4,7 +4,7 @@ PRESET ?= release
 JOBS ?= $(shell nproc)
 FUZZ_SECONDS ?= 60
 
-.PHONY: deps configure build test test-asan fuzz demo bench clean
+.PHONY: deps configure build test test-asan fuzz demo bench bench-peers clean
 
 deps:
 	@scripts/install-deps
@@ -38,6 +38,13 @@ demo: build
 bench: build
 	@mkdir -p out
 	@build/bin/brdfcl-bench --benchmark_out=out/bench.json --benchmark_out_format=json
+
+# Mitsuba 3 as a peer (bench/README.md): a venv in build/venv-peers with mitsuba from PyPI and
+# Debian's libllvm19; needs the network the first time. Not part of `make test`.
+bench-peers: configure
+	@cmake --build --preset $(PRESET) -j $(JOBS) --target brdfcl
+	@mkdir -p out
+	@bench/peers/run-mitsuba-peer --check --json out/bench-peers.json
 
 clean:
 	@rm -rf build build-asan build-fuzz

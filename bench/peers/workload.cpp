@@ -30,7 +30,7 @@ const std::vector<std::string>& workloadNames() {
   return names;
 }
 
-Workload makeWorkload(const std::string& name, std::uint64_t seed) {
+Workload makeWorkload(const std::string& name, std::uint64_t seed, std::size_t materials) {
   const auto& names = workloadNames();
   if (std::find(names.begin(), names.end(), name) == names.end())
     throw Error("unknown --lobe value '" + name + "'; use sheen, specular, clearcoat or all");
@@ -42,7 +42,7 @@ Workload makeWorkload(const std::string& name, std::uint64_t seed) {
   const bool sheen = name == "sheen" || name == "all";
   const bool coat = name == "clearcoat" || name == "all";
   const bool aniso = name == "specular" || name == "all";
-  for (int i = 0; i < 256; ++i) {
+  for (std::size_t i = 0; i < materials; ++i) {
     MaterialParams m;
     m.baseColor = {rng.uniform(), rng.uniform(), rng.uniform()};
     m.metallic = rng.uniform();
@@ -64,8 +64,8 @@ Workload makeWorkload(const std::string& name, std::uint64_t seed) {
   return w;
 }
 
-Bench::Bench(Runtime& rt, const std::string& workload, std::size_t n, std::uint64_t seed)
-    : workload_(makeWorkload(workload, seed)), n_(n) {
+Bench::Bench(Runtime& rt, const std::string& workload, std::size_t n, std::uint64_t seed, std::size_t materials)
+    : workload_(makeWorkload(workload, seed, materials)), n_(n) {
   evaluator_ = std::make_unique<Evaluator>(rt, workload_.options);
   batch_ = std::make_unique<SoaBatch>(*evaluator_, workload_.materials, n);
   Rng rng{seed};
@@ -79,7 +79,8 @@ Bench::Bench(Runtime& rt, const std::string& workload, std::size_t n, std::uint6
       dir[3 * d + 1][i] = s * std::sin(phi);
       dir[3 * d + 2][i] = z;
     }
-    index[i] = std::uint32_t(rng.next() & 255u);
+    // A modulo, not a mask, for any K; for the default 256 it draws the same indices as before.
+    index[i] = std::uint32_t(rng.next() % materials);
   }
   for (auto& p : peerOut_) p.assign(batch_->capacity(), 0.0f);
   for (int k = 0; k < 6; ++k) peerInput_.dir[k] = batch_->directionPlane(k);
@@ -92,6 +93,11 @@ Bench::Bench(Runtime& rt, const std::string& workload, std::size_t n, std::uint6
 }
 
 Bench::~Bench() = default;
+
+void Bench::setDirections(const std::vector<float>& planes) {
+  if (planes.size() != 6 * n_) throw Error("direction planes hold " + std::to_string(planes.size()) + " floats; expected 6 x " + std::to_string(n_));
+  for (int k = 0; k < 6; ++k) std::copy(planes.begin() + k * n_, planes.begin() + (k + 1) * n_, batch_->direction(k));
+}
 
 double Bench::peerDeviation() const {
   double worst = 0;

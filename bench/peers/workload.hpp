@@ -1,5 +1,5 @@
-// The benchmark workloads shared by build/bin/brdfcl-bench and `brdfcl bench`: per lobe, 256
-// random materials carrying exactly that lobe's layers, and N random in-domain samples written
+// The benchmark workloads shared by build/bin/brdfcl-bench and `brdfcl bench`: per lobe, K
+// random materials (256 by default) carrying exactly that lobe's layers, and N random in-domain samples written
 // straight into a SoaBatch so that the kernel and the peers read the same arrays.
 #pragma once
 #include <cstdint>
@@ -22,7 +22,9 @@ struct Workload {
   EvalOptions options;
   std::vector<MaterialParams> materials;
 };
-Workload makeWorkload(const std::string& name, std::uint64_t seed = 1);
+// The first materials of a count-K workload are the same for any K (one generator, drawn in order).
+constexpr std::size_t kDefaultMaterials = 256;
+Workload makeWorkload(const std::string& name, std::uint64_t seed = 1, std::size_t materials = kDefaultMaterials);
 
 // Bytes a sample moves: L and V (24), the material index (4) and RGB out (12).
 constexpr double kBytesPerSample = 40.0;
@@ -30,7 +32,8 @@ constexpr double kBytesPerSample = 40.0;
 // A workload's batch of n samples on the device, plus separate output planes for the peers.
 class Bench {
  public:
-  Bench(Runtime& rt, const std::string& workload, std::size_t n, std::uint64_t seed = 1);
+  Bench(Runtime& rt, const std::string& workload, std::size_t n, std::uint64_t seed = 1,
+        std::size_t materials = kDefaultMaterials);
   ~Bench();
   std::size_t size() const { return n_; }
   const Workload& workload() const { return workload_; }
@@ -38,6 +41,9 @@ class Bench {
   void runPeer(peers::Flavor flavor) { peers::run(flavor, workload_.name, peerInput_); }
   // Largest |kernel - peer| / (|kernel| + 1e-3) over the batch, after both ran.
   double peerDeviation() const;
+  // Replaces the random directions with given ones, six planes of size() floats (L.xyz, V.xyz),
+  // so that an outside peer (bench/peers/mitsuba_peer.py) and the kernel evaluate the same pairs.
+  void setDirections(const std::vector<float>& planes);
 
  private:
   Workload workload_;

@@ -1,10 +1,13 @@
-// `brdfcl bench`: throughput of the batch kernel on N random in-domain samples over 256 random
-// materials, median of several runs after a warm-up, with the side-by-side ratios to the C++
-// peers (scalar loop, OpenMP-SIMD loop) and to the STREAM-triad memory bound, in one process.
+// `brdfcl bench`: throughput of the batch kernel on N random in-domain samples over K random
+// materials (256 by default), median of several runs after a warm-up, with the side-by-side ratios
+// to the C++ peers (scalar loop, OpenMP-SIMD loop) and to the STREAM-triad memory bound, in one process.
 #include <algorithm>
 #include <chrono>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
+#include <fstream>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -33,9 +36,38 @@ double medianSeconds(int runs, F&& f) {
 struct BenchArgs {
   std::string lobe = "all", device;
   std::size_t n = std::size_t(1) << 22;
+  std::size_t materials = bench::kDefaultMaterials;
+  std::string pairs;
   int runs = 7;
   bool json = false;
 };
+
+// Six little-endian float32 planes of n values each (L.xyz, V.xyz): the file an outside peer
+// (bench/peers/mitsuba_peer.py) writes so that both sides evaluate the very same pairs.
+std::vector<float> readPairs(const std::string& path) {
+  std::ifstream in(path, std::ios::binary | std::ios::ate);
+  if (!in || in.tellg() < 0) throw Error(fmt::format("--pairs '{}': cannot read: {}", path, std::strerror(errno)));
+  const auto bytes = std::size_t(in.tellg());
+  if (bytes == 0 || bytes % 24 != 0 || bytes / 24 > (std::size_t(1) << 28))
+    throw Error(fmt::format("--pairs '{}' holds {} bytes; expected six float32 planes of 1 to 268435456 values", path, bytes));
+  std::vector<float> planes(bytes / 4);
+  in.seekg(0);
+  in.read(reinterpret_cast<char*>(planes.data()), std::streamsize(bytes));
+  if (!in) throw Error(fmt::format("--pairs '{}': cannot read: {}", path, std::strerror(errno)));
+  return planes;
+}
+
+nlohmann::json materialJson(const MaterialParams& m) {
+  return {{"base_color", {m.baseColor[0], m.baseColor[1], m.baseColor[2]}},
+          {"metallic", m.metallic},
+          {"roughness", m.roughness},
+          {"sheen_color", {m.sheenColor[0], m.sheenColor[1], m.sheenColor[2]}},
+          {"sheen_roughness", m.sheenRoughness},
+          {"clearcoat", m.clearcoat},
+          {"clearcoat_roughness", m.clearcoatRoughness},
+          {"anisotropy_strength", m.anisotropyStrength},
+          {"anisotropy_rotation", m.anisotropyRotation}};
+}
 }  // namespace
 
 void addBenchCommand(CLI::App& app) {
@@ -43,6 +75,10 @@ void addBenchCommand(CLI::App& app) {
   auto* cmd = app.add_subcommand("bench", "Measure samples/s of the kernel and its ratios to CPU peers");
   cmd->add_option("--lobe", args->lobe, "sheen|specular|clearcoat|all (default all)");
   cmd->add_option("--n", args->n, "samples per run (default 4194304)");
+  cmd->add_option("--materials", args->materials, "number of random materials, 1 to 1048576 (default 256)");
+  cmd->add_option("--pairs", args->pairs,
+                  "raw file of 6 float32 planes (L.xyz, V.xyz) to evaluate instead of random pairs; "
+                  "times the kernel only (no peers) and sets --n from the file");
   cmd->add_option("--runs", args->runs, "timed runs after the warm-up; the median is reported (default 7)");
   cmd->add_option("--device", args->device, "device index or name substring (default $BRDFCL_DEVICE, then 0)");
   cmd->add_flag("--json", args->json, "print one JSON object on stdout");
@@ -50,12 +86,37 @@ void addBenchCommand(CLI::App& app) {
     if (args->n == 0 || args->n > (std::size_t(1) << 28))
       throw Error(fmt::format("--n {} is out of range; use 1 to 268435456", args->n));
     if (args->runs < 1 || args->runs > 1000) throw Error(fmt::format("--runs {} is out of range; use 1 to 1000", args->runs));
+    if (args->materials == 0 || args->materials > (std::size_t(1) << 20))
+      throw Error(fmt::format("--materials {} is out of range; use 1 to 1048576", args->materials));
+    std::vector<float> pairs;
+    if (!args->pairs.empty()) {
+      pairs = readPairs(args->pairs);  // before the clock: file I/O is no part of the kernel's time
+      args->n = pairs.size() / 6;
+    }
     const auto t0 = Clock::now();
     Runtime rt(args->device);
-    bench::Bench b(rt, args->lobe, args->n);
+    bench::Bench b(rt, args->lobe, args->n, 1, args->materials);
+    if (!pairs.empty()) b.setDirections(pairs);
     b.runKernel();  // warm-up; also builds (or loads from PoCL's cache) the program
     const double firstRun = std::chrono::duration<double>(Clock::now() - t0).count();
     const double kernel = medianSeconds(args->runs, [&] { b.runKernel(); });
+    if (!pairs.empty()) {
+      // The outside peer times its own side; it needs the kernel's figure and the material.
+      const double sps = double(args->n) / kernel;
+      if (args->json) {
+        const nlohmann::json j = {{"samples_per_second", sps},        {"n", args->n},
+                                  {"lobe", args->lobe},               {"materials", args->materials},
+                                  {"device", rt.info().name},         {"runs", args->runs},
+                                  {"kernel_seconds_median", kernel},  {"first_run_seconds", firstRun},
+                                  {"material0", materialJson(b.workload().materials[0])}};
+        std::printf("%s\n", j.dump(2).c_str());
+      } else {
+        fmt::print("brdfcl bench: lobe {}, {} pairs from '{}' over {} materials, median of {} runs, on {}\n",
+                   args->lobe, args->n, args->pairs, args->materials, args->runs, rt.info().name);
+        fmt::print("  {:<28}{:>12.1f} Msamples/s\n", "OpenCL kernel", sps / 1e6);
+      }
+      return;
+    }
     b.runPeer(peers::Flavor::OpenMPSimd);
     const double simd = medianSeconds(args->runs, [&] { b.runPeer(peers::Flavor::OpenMPSimd); });
     const double simdDeviation = b.peerDeviation();
@@ -63,13 +124,13 @@ void addBenchCommand(CLI::App& app) {
     const double triad = peers::streamTriadBytesPerSecond(std::size_t(1) << 25, 5);
 
     // End to end through the public API for a small batch: what a second `eval` of 1K pays.
-    const auto w = bench::makeWorkload(args->lobe);
+    const auto w = bench::makeWorkload(args->lobe, 1, args->materials);
     Samples small;
     for (int i = 0; i < 1024; ++i) {
       const float z = 0.05f + 0.9f * float(i) / 1024.0f, s = std::sqrt(1 - z * z);
       small.L.insert(small.L.end(), {s, 0.0f, z});
       small.V.insert(small.V.end(), {-s * 0.6f, s * 0.8f, z});
-      small.material.push_back(std::uint32_t(i % 256));
+      small.material.push_back(std::uint32_t(std::size_t(i) % args->materials));
     }
     Evaluator ev(rt, w.options);
     ev.evaluate(w.materials, small);
@@ -83,6 +144,7 @@ void addBenchCommand(CLI::App& app) {
           {"samples_per_second", sps},
           {"n", args->n},
           {"lobe", args->lobe},
+          {"materials", args->materials},
           {"device", rt.info().name},
           {"runs", args->runs},
           {"kernel_seconds_median", kernel},
@@ -99,8 +161,8 @@ void addBenchCommand(CLI::App& app) {
       std::printf("%s\n", j.dump(2).c_str());
       return;
     }
-    fmt::print("brdfcl bench: lobe {}, {} samples over 256 materials, median of {} runs, on {}\n", args->lobe,
-               args->n, args->runs, rt.info().name);
+    fmt::print("brdfcl bench: lobe {}, {} samples over {} materials, median of {} runs, on {}\n", args->lobe,
+               args->n, args->materials, args->runs, rt.info().name);
     fmt::print("  {:<28}{:>12.1f} Msamples/s\n", "OpenCL kernel", sps / 1e6);
     fmt::print("  {:<28}{:>12.1f} Msamples/s   kernel is {:.2f}x\n", "scalar C++ loop", spsScalar / 1e6, sps / spsScalar);
     fmt::print("  {:<28}{:>12.1f} Msamples/s   kernel is {:.2f}x\n", "OpenMP-SIMD loop (2 cores)", spsSimd / 1e6,

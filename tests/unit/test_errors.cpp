@@ -238,6 +238,12 @@ TEST_F(Errors, BenchOptionsOutOfRange) {
   expectUserError(cli({"bench", "--n", "268435457"}), "--n 268435457 is out of range; use 1 to 268435456");
   expectUserError(cli({"bench", "--runs", "0"}), "--runs 0 is out of range; use 1 to 1000");
   expectUserError(cli({"bench", "--runs", "1001"}), "--runs 1001 is out of range; use 1 to 1000");
+  expectUserError(cli({"bench", "--materials", "0"}), "--materials 0 is out of range; use 1 to 1048576");
+  expectUserError(cli({"bench", "--materials", "1048577"}), "--materials 1048577 is out of range; use 1 to 1048576");
+  expectUserError(cli({"bench", "--pairs", path("none.f32")}), "--pairs '" + path("none.f32") + "': cannot read: No such file or directory");
+  write("odd.f32", std::string(25, '\0'));
+  expectUserError(cli({"bench", "--pairs", path("odd.f32")}),
+                  "--pairs '" + path("odd.f32") + "' holds 25 bytes; expected six float32 planes of 1 to 268435456 values");
   expectUserError(cli({"bench", "--lobe", "diffuse", "--n", "16", "--runs", "1"}),
                   "unknown --lobe value 'diffuse'; use sheen, specular, clearcoat or all");
 }
