@@ -135,6 +135,34 @@ std::function<void(int, int)> progressLine(const char* what) {
   };
 }
 
+// --ibl and --ibl-samples of shade and render, checked before any work.
+struct IblArgs {
+  std::string mode = "split-sum";
+  int samples = 1024;
+
+  void add(CLI::App* cmd) {
+    cmd->add_option("--ibl", mode, "image-based light: split-sum (prefiltered, the default) or exact (Monte Carlo ground truth)");
+    cmd->add_option("--ibl-samples", samples, "exact: samples per pixel, 1 to 65536 (default 1024)");
+  }
+  ShadeOptions check(CLI::App* cmd) const {
+    ShadeOptions o;
+    o.ibl = parseIblMode(mode);
+    checkIblSamples(samples);
+    if (o.ibl != IblMode::Exact && cmd->count("--ibl-samples")) throw Error("--ibl-samples applies to --ibl exact; add --ibl exact");
+    o.iblSamples = samples;
+    if (o.ibl == IblMode::Exact) o.progress = progressLine("brdfcl: exact IBL");
+    return o;
+  }
+};
+
+// Shades under the chosen image-based light; exact mode reports its error estimate on stderr.
+Image shadeWith(Shader& shader, const GBuffer& g, const ShadeOptions& o) {
+  ShadeStats stats;
+  Image img = shader.shade(g, o, &stats);
+  if (o.ibl == IblMode::Exact) std::fprintf(stderr, "%s\n", exactIblSummary(stats).c_str());
+  return img;
+}
+
 // The options that choose light for render and demo.
 struct LightingArgs {
   std::string environment = "builtin", lights = "gltf";
@@ -199,6 +227,7 @@ void addRenderCommands(CLI::App& app) {
       std::string gbuffer, scene, out, png, exr, device;
       float exposure = 0.0f;
       bool noCheck = false;
+      IblArgs ibl;
     };
     auto a = std::make_shared<Args>();
     auto* cmd = app.add_subcommand("shade", "Shade a G-buffer EXR under a scene's lights and environment");
@@ -210,7 +239,8 @@ void addRenderCommands(CLI::App& app) {
     cmd->add_option("--exposure", a->exposure, "exposure in stops for the PNG (default 0)");
     cmd->add_option("--device", a->device, "device index or name substring");
     cmd->add_flag("--no-check", a->noCheck, "skip the G-buffer's range checks (factors in [0, 1], unit normals)");
-    cmd->callback([a] {
+    a->ibl.add(cmd);
+    cmd->callback([a, cmd] {
       std::string exr = a->exr, png = a->png;
       if (lowerExtension(a->out) == ".png" && !isStream(a->out)) {
         if (!png.empty()) throw Error("--out is already the PNG; drop --png, or give --out FILE.exr");
@@ -226,6 +256,7 @@ void addRenderCommands(CLI::App& app) {
       checkOutput("--png", a->png, ".png");
       checkOutput("--exr", a->exr, ".exr");
       checkExposure(a->exposure);
+      const ShadeOptions shadeOptions = a->ibl.check(cmd);
       GBufferReadOptions readOptions;
       readOptions.check = !a->noCheck;
       const GBuffer g = readGBuffer(a->gbuffer, readOptions);
@@ -235,7 +266,7 @@ void addRenderCommands(CLI::App& app) {
       Runtime rt(a->device);
       checkFrameFits(FrameJob::Shade, g.width, g.height, usableHostMemory(), &rt.info(), a->gbuffer);
       Shader shader(rt, scene);
-      writeImages(shader.shade(g), exr, png, a->exposure);
+      writeImages(shadeWith(shader, g, shadeOptions), exr, png, a->exposure);
     });
   }
   {
@@ -245,6 +276,7 @@ void addRenderCommands(CLI::App& app) {
       int spp = 4;
       GltfArgs gltf;
       LightingArgs lighting;
+      IblArgs ibl;
     };
     auto a = std::make_shared<Args>();
     auto* cmd = app.add_subcommand("render", "Render a glTF asset or a built-in scene (G-buffer + shading) to PNG (and EXR)");
@@ -253,6 +285,7 @@ void addRenderCommands(CLI::App& app) {
     cmd->add_option("--size", a->gltf.size, "WIDTHxHEIGHT (default 768x768 for spheres; 1280x720 or the camera's aspect at 720 rows)");
     cmd->add_option("--spp", a->spp, "stratified sub-pixel samples per pixel, glTF only (default 4)");
     a->lighting.add(cmd);
+    a->ibl.add(cmd);
     cmd->add_option("--exposure", a->exposure, "exposure in stops (default 0)");
     cmd->add_option("--out", a->out, "output tone-mapped .png, or linear radiance .exr")->required();
     cmd->add_option("--exr", a->exr, "also the linear radiance as .exr");
@@ -273,9 +306,13 @@ void addRenderCommands(CLI::App& app) {
       checkOutput("--gbuffer", a->gbuffer, ".exr");
       checkExposure(a->exposure);
       checkSpp(a->spp);
+      const ShadeOptions shadeOptions = a->ibl.check(cmd);
       const Environment environment = a->lighting.environmentChoice(cmd);
       if (!a->gltf.path.empty()) {
         if (cmd->count("--scene")) throw Error("--scene and --gltf are alternatives; give one");
+        if (shadeOptions.ibl == IblMode::Exact)
+          throw Error("--ibl exact applies to the built-in spheres and to shade; glTF renders use the split sum "
+                      "(write a G-buffer with --gbuffer and shade it with --ibl exact)");
         const LoadedAsset l = loadAsset(a->gltf);
         const Scene lighting =
             gltf::frameLighting(l.asset, l.view, a->lighting.lights, environment, a->lighting.environmentGiven);
@@ -296,7 +333,7 @@ void addRenderCommands(CLI::App& app) {
       const GBuffer g = renderSpheresGBuffer(rt, scene, w, h);
       if (!a->gbuffer.empty()) writeGBuffer(a->gbuffer, g);
       Shader shader(rt, scene);
-      writeImages(shader.shade(g), exr, png, a->exposure);
+      writeImages(shadeWith(shader, g, shadeOptions), exr, png, a->exposure);
     });
   }
   {

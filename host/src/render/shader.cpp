@@ -17,6 +17,7 @@
 #include "brdfcl/render.hpp"
 #include "kernels/common/shading_layout.h"
 #include "model/pack.hpp"
+#include "render/exact_ibl.hpp"
 
 namespace brdfcl {
 
@@ -365,10 +366,15 @@ struct Shader::State {
   cl::Program program;
   std::vector<float> planes;  // the G-buffer's planes, kept between frames (see gbufferPlanes)
   std::pair<std::size_t, cl::Buffer> planesOnDevice;  // their device copy, and its size in floats
+  // --ibl exact, prepared on its first use: the integrator and the environment's CDFs.
+  bool exactReady = false;
+  cl::Program exactProgram;
+  cl::Buffer envRows, envCols, envTexelP;
+  float envShare = 0.0f;
 };
 
 Shader::Shader(Runtime& rt, const Scene& scene, EvalOptions options)
-    : s_(std::make_unique<State>(State{rt, scene, options, nullptr, {}, 0, {}, {}, {}})) {
+    : s_(std::make_unique<State>(State{rt, scene, options, nullptr, {}, 0, {}, {}, {}, false, {}, {}, {}, {}, 0.0f})) {
   auto& s = *s_;
   s.light = prepareLight(rt, scene.environment, options);
   try {
@@ -526,8 +532,12 @@ std::shared_ptr<const PreparedLight> prepareLight(Runtime& rt, const Environment
 
 Shader::~Shader() = default;
 
-Image Shader::shade(const GBuffer& g) {
+Image Shader::shade(const GBuffer& g) { return shade(g, ShadeOptions{}, nullptr); }
+
+Image Shader::shade(const GBuffer& g, const ShadeOptions& options, ShadeStats* stats) {
   auto& s = *s_;
+  const bool exact = options.ibl == IblMode::Exact;
+  if (exact) checkIblSamples(options.iblSamples);
   auto& planes = s.planes;
   gbufferPlanes(g, planes);
   Image img;
@@ -569,11 +579,47 @@ Image Shader::shade(const GBuffer& g) {
     k.setArg(a++, s.light->sheenESize);
     k.setArg(a++, s.light->fresnelLambert);
     k.setArg(a++, kFresnelLambertSize);
+    k.setArg(a++, exact ? 0 : 1);
     k.setArg(a++, bo);
     s.rt.queue().enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(std::size_t(g.width), std::size_t(g.height)));
     s.rt.queue().enqueueReadBuffer(bo, CL_TRUE, 0, out.size() * 4, out.data());
+    if (exact && !s.exactReady) {
+      // The CDFs come from the full-resolution map the kernel reads, as it is on the device.
+      std::vector<float> env(3 * std::size_t(s.light->envW) * s.light->envH);
+      s.rt.queue().enqueueReadBuffer(s.light->background, CL_TRUE, 0, env.size() * 4, env.data());
+      const auto cdf = detail::environmentCdf(env, s.light->envW, s.light->envH);
+      s.envRows = readOnly(ctx, cdf.rows);
+      s.envCols = readOnly(ctx, cdf.cols);
+      s.envTexelP = readOnly(ctx, cdf.texelP);
+      s.envShare = cdf.share;
+      FeatureSet all;
+      all.sheen = all.ratifiedSheen = all.clearcoat = all.anisotropy = true;
+      EvalOptions o = s.options;
+      o.lobe = Lobe::All;
+      s.exactProgram = s.rt.program("ibl_exact.cl", materialDefines(o, all));
+      s.exactReady = true;
+    }
   } catch (const cl::Error&) {
     rethrowOpenCL("shading the G-buffer");
+  }
+  if (exact) {
+    detail::ExactIblInputs in;
+    in.program = s.exactProgram;
+    in.gbuffer = &s.planesOnDevice.second;
+    in.width = g.width;
+    in.height = g.height;
+    in.camera = s.scene.hasCamera || !g.camera ? cameraFor(s.scene, g.width, g.height) : cameraFor(*g.camera, g.width, g.height);
+    in.environment = &s.light->background;
+    in.rows = &s.envRows;
+    in.cols = &s.envCols;
+    in.texelP = &s.envTexelP;
+    in.envW = s.light->envW;
+    in.envH = s.light->envH;
+    in.envShare = s.envShare;
+    in.rotation = s.scene.environment.rotation;
+    in.sheenE = &s.light->sheenE;
+    in.sheenESize = s.light->sheenESize;
+    detail::integrateExactIbl(s.rt, in, planes, options, out, stats);
   }
   img.rgb.resize(3 * np);
   for (std::size_t i = 0; i < np; ++i)
