@@ -281,6 +281,9 @@ TEST(ExactIblCli, BadValuesAreOneLineErrorsBeforeAnyWork) {
       // The G-buffer does not exist: the option is refused before it is read.
       {{"shade", "--gbuffer", "missing.exr", "--scene", "missing.json", "--ibl", "exact", "--ibl-samples", "65537", "--out", "x.exr"},
        "brdfcl: --ibl-samples 65537 is out of range; use 1 to 65536"},
+      {{"render", "--gltf", "missing.glb", "--ibl", "exact", "--out", "x.png"},
+       "brdfcl: --ibl exact applies to the built-in spheres and to shade; glTF renders use the split sum (write a "
+       "G-buffer with --gbuffer and shade it with --ibl exact)"},
       {{"shade", "--gbuffer", "missing.exr", "--scene", "missing.json", "--ibl", "Exact", "--out", "x.exr"},
        "brdfcl: --ibl 'Exact' is not an image-based light mode; use split-sum or exact"},
   };
