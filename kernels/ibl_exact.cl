@@ -8,12 +8,16 @@
 #include "common/environment.h"
 #include "common/gbuffer_pixel.h"
 
-/* Accumulator planes, np floats each: RGB sums of whole blocks of BLOCK samples and of the
-   current block (a single float running sum of 65536 samples drifts by ~0.4 %, two levels keep
-   it near 1e-5), then Welford's running mean and sum of squared deviations of the per-sample
-   luminance (stable in float where a sum of squares is not). Blocks follow the global sample
-   index, so any chunking of the launches performs the same float operations. */
-enum { ACC_R, ACC_G, ACC_B, ACC_BLOCK_R, ACC_BLOCK_G, ACC_BLOCK_B, ACC_LUM_MEAN, ACC_LUM_M2, ACC_PLANES };
+/* The samples of a pixel are REPLICATES independently rotated copies of the sequence (sample k
+   is point k / REPLICATES of copy k % REPLICATES): the spread of the copies' means measures the
+   error of this quasi-random estimate, which the sample variance (made for independent samples)
+   overstates many times. Accumulator planes, np floats each: RGB sums of whole blocks of BLOCK
+   samples and of the current block (a single float running sum of 65536 samples drifts by
+   ~0.4 %, two levels keep it near 1e-5), then each copy's luminance sums likewise. Blocks follow
+   the global sample index, so any chunking of the launches performs the same float operations. */
+#define REPLICATES 4
+enum { ACC_R, ACC_G, ACC_B, ACC_BLOCK_R, ACC_BLOCK_G, ACC_BLOCK_B, ACC_LUM, ACC_BLOCK_LUM = ACC_LUM + REPLICATES,
+       ACC_PLANES = ACC_BLOCK_LUM + REPLICATES };
 #define BLOCK 256
 
 enum { TECH_DIFFUSE, TECH_SPECULAR, TECH_SHEEN, TECH_COAT, TECH_ENV, TECH_COUNT };
@@ -28,10 +32,13 @@ static inline uint hash_u32(uint x) {
   return x;
 }
 
-/* Roberts' R3 sequence (the plastic-number lattice in 3D, alphas = 1/g^k, g^4 = g + 1) in 32-bit
-   fixed point, so that sample k is exact for every k, with a per-pixel Cranley-Patterson
-   rotation from the hash: reproducible bit for bit and independent between pixels. */
-static inline float r3_dim(uint k, uint alpha, uint rotation) {
+/* Roberts' R2 sequence (the 2-D Kronecker lattice of the plastic number g, g^3 = g + 1, alphas
+   1/g and 1/g^2) in 32-bit fixed point, so that sample k is exact for every k, with a per-pixel
+   Cranley-Patterson rotation from the hash: reproducible bit for bit and independent between
+   pixels. The technique is chosen by the first coordinate, which is then rescaled within the
+   chosen interval and reused: a third lattice dimension for the choice instead correlates with
+   the direction and leaves mixtures of two lobes converging barely faster than random. */
+static inline float r2_dim(uint k, uint alpha, uint rotation) {
   uint x = rotation + k * alpha;
   return (float)(x >> 8) * (1.0f / 16777216.0f);
 }
@@ -131,28 +138,48 @@ __kernel void ibl_exact(__global const float* restrict gb, int width, int height
   cdf[TECH_ENV] = 1.0f;
 
   const uint scramble = hash_u32((uint)i * 0x9e3779b9u + 0x632be5abu);
-  const uint rot0 = hash_u32(scramble ^ 0x1u), rot1 = hash_u32(scramble ^ 0x2u), rot2 = hash_u32(scramble ^ 0x3u);
+  uint rot1[REPLICATES], rot2[REPLICATES];
+  for (int r = 0; r < REPLICATES; ++r) {
+    rot1[r] = hash_u32(scramble ^ (2u * (uint)r + 1u));
+    rot2[r] = hash_u32(scramble ^ (2u * (uint)r + 2u));
+  }
 
   float3 total = (float3)(0.0f), block = (float3)(0.0f);
-  float mean = 0.0f, m2 = 0.0f;
+  float lum_total[REPLICATES], lum_block[REPLICATES];
+  for (int r = 0; r < REPLICATES; ++r) lum_total[r] = lum_block[r] = 0.0f;
   if (sample_begin > 0) {
     total = (float3)(acc[ACC_R * np + i], acc[ACC_G * np + i], acc[ACC_B * np + i]);
     block = (float3)(acc[ACC_BLOCK_R * np + i], acc[ACC_BLOCK_G * np + i], acc[ACC_BLOCK_B * np + i]);
-    mean = acc[ACC_LUM_MEAN * np + i]; m2 = acc[ACC_LUM_M2 * np + i];
+    for (int r = 0; r < REPLICATES; ++r) {
+      lum_total[r] = acc[(ACC_LUM + r) * np + i];
+      lum_block[r] = acc[(ACC_BLOCK_LUM + r) * np + i];
+    }
   }
   for (int k = sample_begin; k < sample_end; ++k) {
-    float uc = r3_dim((uint)k, 3518319155u, rot0);
-    float u1 = r3_dim((uint)k, 2882110345u, rot1), u2 = r3_dim((uint)k, 2360945575u, rot2);
+    const int rep = k % REPLICATES;
+    const uint j = (uint)(k / REPLICATES);
+    float u1 = r2_dim(j, 3242174889u, rot1[rep]), u2 = r2_dim(j, 2447445414u, rot2[rep]);
+    /* The technique whose interval of the CDF holds u1; u1 rescaled to [0, 1) within it. A share
+       left by float rounding above the last lobe goes to that lobe when the environment has none. */
+    int tech = 0;
+    while (tech < TECH_ENV && !(u1 < cdf[tech] && p[tech] > 0.0f)) ++tech;
+    if (tech == TECH_ENV && p_env <= 0.0f) {
+      tech = TECH_SPECULAR;
+      u1 = 0.5f;
+    } else {
+      float lo = cdf[tech] - p[tech];
+      u1 = clamp((u1 - lo) / p[tech], 0.0f, 0.99999994f);
+    }
     float3 L;
-    if (uc < cdf[TECH_DIFFUSE]) {
+    if (tech == TECH_DIFFUSE) {
       L = from_frame(SampleCosineHemisphere(u1, u2), px.T, px.B, N);
-    } else if (uc < cdf[TECH_SPECULAR]) {
+    } else if (tech == TECH_SPECULAR) {
       vec3w Ve = Va;
       Ve.z = max(Ve.z, 1e-4f);
       L = from_frame(reflect_about(Va, SampleGGXVNDF(Ve, m.alpha_t, m.alpha, u1, u2)), Ta, Ba, N);
-    } else if (uc < cdf[TECH_SHEEN]) {
+    } else if (tech == TECH_SHEEN) {
       L = from_frame(SampleUniformHemisphere(u1, u2), px.T, px.B, N);
-    } else if (uc < cdf[TECH_COAT]) {
+    } else if (tech == TECH_COAT) {
       vec3w Ve = Vc;
       Ve.z = max(Ve.z, 1e-4f);
       L = from_frame(reflect_about(Vc, SampleGGXVNDF(Ve, m.clearcoat_alpha, m.clearcoat_alpha, u1, u2)), px.Tc, px.Bc, px.Nc);
@@ -182,15 +209,20 @@ __kernel void ibl_exact(__global const float* restrict gb, int width, int height
       }
     }
     block += value;
+    lum_block[rep] += luminance(value);
     if ((k + 1) % BLOCK == 0) {
       total += block;
       block = (float3)(0.0f);
+      for (int r = 0; r < REPLICATES; ++r) {
+        lum_total[r] += lum_block[r];
+        lum_block[r] = 0.0f;
+      }
     }
-    float lum = luminance(value), delta = lum - mean;
-    mean += delta / (float)(k + 1);
-    m2 += delta * (lum - mean);
   }
   acc[ACC_R * np + i] = total.x; acc[ACC_G * np + i] = total.y; acc[ACC_B * np + i] = total.z;
   acc[ACC_BLOCK_R * np + i] = block.x; acc[ACC_BLOCK_G * np + i] = block.y; acc[ACC_BLOCK_B * np + i] = block.z;
-  acc[ACC_LUM_MEAN * np + i] = mean; acc[ACC_LUM_M2 * np + i] = m2;
+  for (int r = 0; r < REPLICATES; ++r) {
+    acc[(ACC_LUM + r) * np + i] = lum_total[r];
+    acc[(ACC_BLOCK_LUM + r) * np + i] = lum_block[r];
+  }
 }

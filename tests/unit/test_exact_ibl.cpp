@@ -143,11 +143,8 @@ TEST(ExactIbl, WhiteFurnaceGivesTheReferenceAlbedoForEveryLayer) {
   for (std::size_t i = 0; i < want.size(); ++i)
     for (int c = 0; c < 3; ++c) {
       const double got = img.rgb[3 * i + c], w = want[i][c];
-      // 0.5 % relative with an absolute floor of 5e-4 (dark channels of dark materials). The
-      // velvet at sheen roughness 0.3 is 1.5 %: it is off by about 1 % at N.V 0.6 to 0.8 and stays
-      // so from 4096 to 65536 samples, so that part is f itself against the reference (the
-      // kernel's sheen albedo table at low roughness is the suspect), not the integrator.
-      const double rel = ms[i / kNdotV.size()].sheenRoughness > 0.0f && ms[i / kNdotV.size()].sheenRoughness < 0.4f ? 0.015 : 0.005;
+      // 0.5 % relative with an absolute floor of 5e-4 (dark channels of dark materials).
+      const double rel = 0.005;
       const double excess = std::fabs(got - w) / (rel * w + 5e-4);
       if (excess > worst) {
         worst = excess;
@@ -158,23 +155,26 @@ TEST(ExactIbl, WhiteFurnaceGivesTheReferenceAlbedoForEveryLayer) {
   EXPECT_LE(worst, 1.0) << "worst case (error / tolerance " << worst << "): " << where;
 }
 
-// The R3 sequence is quasi-random: the error falls at least as 1/sqrt(N) (ratio 4 for 16x the
-// samples) and, on these smooth integrands, faster (measured 6.5, about N^-0.67); 12 allows up
-// to about N^-0.9.
+// The R2 sequence is quasi-random: the error falls at least as 1/sqrt(N) (ratio 4 for 16x the
+// samples, 2 allowed for noise) and on these smooth integrands about as 1/N (measured 19.5, about
+// N^-1.07); 32 (N^-1.25) would mean the 1024-sample error is no longer measurable against the
+// reference.
 TEST(ExactIbl, ErrorFallsAtLeastAsOneOverSqrtN) {
   const double e64 = rmsRelativeError(exactFurnace(64)), e1024 = rmsRelativeError(exactFurnace(1024));
   const double ratio = e64 / e1024;
   EXPECT_GE(ratio, 2.0) << "RMS relative error " << e64 << " at 64 samples, " << e1024 << " at 1024";
-  EXPECT_LE(ratio, 12.0) << "RMS relative error " << e64 << " at 64 samples, " << e1024 << " at 1024";
+  EXPECT_LE(ratio, 32.0) << "RMS relative error " << e64 << " at 64 samples, " << e1024 << " at 1024";
 }
 
-// The printed estimate (mean per-pixel relative standard error) against the RMS relative error
-// actually made, at a low sample count where the reference's own error is negligible.
+// The printed estimate (mean per-pixel relative standard error, from the spread of the four
+// independently rotated copies of the sequence) against the RMS relative error actually made, at
+// a low sample count where the reference's own error is negligible.
 TEST(ExactIbl, ErrorEstimateMatchesTheMeasuredError) {
   ShadeStats stats;
   const double measured = rmsRelativeError(exactFurnace(64, &stats));
   EXPECT_EQ(stats.iblSamples, 64);
   EXPECT_EQ(stats.coveredPixels, furnaceMaterials().size() * kNdotV.size());
+  std::printf("64 samples: estimated %.5f, measured RMS %.5f\n", stats.relativeStandardError, measured);
   EXPECT_GE(stats.relativeStandardError, measured / 2) << "measured " << measured;
   EXPECT_LE(stats.relativeStandardError, measured * 2) << "measured " << measured;
   EXPECT_EQ(exactIblSummary(stats).rfind("brdfcl: exact IBL, 64 samples per pixel: relative standard error of the image ", 0), 0u);

@@ -34,7 +34,12 @@ std::string exactIblSummary(const ShadeStats& s) {
 namespace detail {
 
 namespace {
-constexpr int kAccPlanes = 8;  // kernels/ibl_exact.cl: RGB sums of whole blocks, of the last block, luminance mean and M2
+// kernels/ibl_exact.cl: RGB sums of whole blocks and of the last block, then each replicate's
+// luminance sums likewise.
+constexpr int kReplicates = 4;
+constexpr int kAccPlanes = 6 + 2 * kReplicates;
+// c4(4) = sqrt(2 / 3) Gamma(2) / Gamma(3 / 2): E[s] = c4 sigma for 4 normal values.
+constexpr double kC4 = 0.9213177319235613;
 // About this many pixel-samples per launch: well under a second on a CPU, far under a GPU watchdog.
 constexpr double kPixelSamplesPerLaunch = 4.0 * 1024 * 1024;
 }  // namespace
@@ -141,10 +146,20 @@ void integrateExactIbl(Runtime& rt, const ExactIblInputs& in, const std::vector<
     ++covered;
     const float occlusion = std::clamp(planes[GB_OCCLUSION * np + i], 0.0f, 1.0f);
     for (int c = 0; c < 3; ++c) out[c * np + i] += (acc[c * np + i] + acc[(3 + c) * np + i]) / float(total) * occlusion;
-    const double mean = acc[6 * np + i], m2 = acc[7 * np + i];
-    if (mean > 0.0 && total > 1) {
-      // Standard error of the mean of `total` samples: sqrt(sample variance / total).
-      relSum += std::sqrt(std::max(m2, 0.0) / (total - 1) / total) / mean;
+    // The replicates' means (copy r holds the samples k = r mod kReplicates) and their spread:
+    // the standard error of their average is s / sqrt(R), s unbiased by c4.
+    if (total < kReplicates) continue;
+    double means[kReplicates], sum = 0.0;
+    for (int r = 0; r < kReplicates; ++r) {
+      const int count = (total - r + kReplicates - 1) / kReplicates;
+      means[r] = (double(acc[(6 + r) * np + i]) + acc[(6 + kReplicates + r) * np + i]) / count;
+      sum += means[r];
+    }
+    const double mean = sum / kReplicates;
+    double ss = 0.0;
+    for (double m : means) ss += (m - mean) * (m - mean);
+    if (mean > 0.0) {
+      relSum += std::sqrt(ss / (kReplicates - 1) / kReplicates) / kC4 / mean;
       ++lit;
     }
   }
