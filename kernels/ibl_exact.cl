@@ -160,7 +160,8 @@ __kernel void ibl_exact(__global const float* restrict gb, int width, int height
     const uint j = (uint)(k / REPLICATES);
     float u1 = r2_dim(j, 3242174889u, rot1[rep]), u2 = r2_dim(j, 2447445414u, rot2[rep]);
     /* The technique whose interval of the CDF holds u1; u1 rescaled to [0, 1) within it. A share
-       left by float rounding above the last lobe goes to that lobe when the environment has none. */
+       left by float rounding above the last lobe goes to the specular one (always present) when the
+       environment has none. */
     int tech = 0;
     while (tech < TECH_ENV && !(u1 < cdf[tech] && p[tech] > 0.0f)) ++tech;
     if (tech == TECH_ENV && p_env <= 0.0f) {

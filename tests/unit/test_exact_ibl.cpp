@@ -8,6 +8,7 @@
 #include <cstring>
 #include <fstream>
 #include <map>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -232,6 +233,53 @@ TEST(ExactIbl, SplitSumOptionsGiveTheDefaultBytes) {
   Shader shader(runtime(), environmentOnly("sky"));
   const Image a = shader.shade(g), b = shader.shade(g, ShadeOptions{});
   EXPECT_EQ(std::memcmp(a.rgb.data(), b.rgb.data(), a.rgb.size() * 4), 0);
+}
+
+// Each sampler of kernels/brdf/sampling.h against its own pdf, at 16 lanes (BRDFCL_W = 16, as the
+// wide kernels build): the mean of N.L / pdf over a jittered grid of (u1, u2) is the cosine
+// integral pi only if the density of the samples is the pdf, and only from lanes that compute.
+TEST(ExactIbl, SamplersMatchTheirPdfsAtSixteenLanes) {
+  auto& rt = runtime();
+  auto program = rt.program("probe_sampling.cl", "-DBRDFCL_W=16");
+  const int side = 512, n = side * side;
+  std::vector<float> u1(n), u2(n), out(n);
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> jitter(0.0f, 1.0f);
+  for (int a = 0; a < side; ++a)
+    for (int b = 0; b < side; ++b) {
+      u1[a * side + b] = std::min((a + jitter(rng)) / side, 0.99999994f);
+      u2[a * side + b] = std::min((b + jitter(rng)) / side, 0.99999994f);
+    }
+  cl::Buffer b1(rt.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, std::size_t(n) * 4, u1.data());
+  cl::Buffer b2(rt.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, std::size_t(n) * 4, u2.data());
+  cl::Buffer bo(rt.context(), CL_MEM_WRITE_ONLY, std::size_t(n) * 4);
+  cl::Kernel k(program, "probe_sampling");
+  struct Case {
+    const char* what;
+    float v[3], ax, ay;
+    int technique;
+  };
+  const float s6 = 0.6f, c8 = 0.8f;
+  const std::vector<Case> cases = {
+      {"VNDF isotropic, alpha 0.5, N.V 0.8", {s6, 0, c8}, 0.5f, 0.5f, 0},
+      {"VNDF isotropic, alpha 1, N.V 1", {0, 0, 1}, 1.0f, 1.0f, 0},
+      {"VNDF anisotropic 0.9 x 0.3, N.V 0.8 off-axis", {0.36f, 0.48f, c8}, 0.9f, 0.3f, 0},
+      {"VNDF anisotropic 0.3 x 0.9, N.V 0.8", {s6, 0, c8}, 0.3f, 0.9f, 0},
+      {"cosine hemisphere", {0, 0, 1}, 1, 1, 1},
+      {"uniform hemisphere", {0, 0, 1}, 1, 1, 2},
+  };
+  for (const auto& c : cases) {
+    int a = 0;
+    for (const cl::Buffer* b : {&b1, &b2}) k.setArg(a++, *b);
+    for (float f : {c.v[0], c.v[1], c.v[2], c.ax, c.ay}) k.setArg(a++, f);
+    k.setArg(a++, c.technique);
+    k.setArg(a++, bo);
+    rt.queue().enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(n / 16));
+    rt.queue().enqueueReadBuffer(bo, CL_TRUE, 0, n * 4, out.data());
+    double sum = 0;
+    for (float x : out) sum += x;
+    EXPECT_NEAR(sum / n, M_PI, 0.01 * M_PI) << c.what;
+  }
 }
 
 namespace {

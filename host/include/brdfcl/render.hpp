@@ -63,7 +63,8 @@ struct ShadeOptions {
 };
 
 // What the exact integrator measured: the mean over covered pixels (with light) of each pixel's
-// standard error of its image-based luminance over that luminance.
+// standard error of its image-based luminance (the spread of four independently rotated copies
+// of its sample sequence) over that luminance.
 struct ShadeStats {
   int iblSamples = 0;
   std::size_t coveredPixels = 0;
