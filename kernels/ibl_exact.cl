@@ -90,7 +90,7 @@ __kernel void ibl_exact(__global const float* restrict gb, int width, int height
                         __global const float* restrict env, int env_w, int env_h, float env_rotation,
                         __global const float* restrict env_rows, __global const float* restrict env_cols,
                         __global const float* restrict env_texel_p, float env_share,
-                        __global const float* restrict sheen_e, int sheen_e_size, int sample_begin, int sample_end,
+                        __global const float* restrict sheen_e, int sheen_e_size, uint seed, int sample_begin, int sample_end,
                         __global float* restrict acc) {
   int x = get_global_id(0), y = get_global_id(1);
   if (x >= width || y >= height) return;
@@ -137,7 +137,7 @@ __kernel void ibl_exact(__global const float* restrict gb, int width, int height
   p[TECH_ENV] = p_env;
   cdf[TECH_ENV] = 1.0f;
 
-  const uint scramble = hash_u32((uint)i * 0x9e3779b9u + 0x632be5abu);
+  const uint scramble = hash_u32((uint)i * 0x9e3779b9u + 0x632be5abu + hash_u32(seed));
   uint rot1[REPLICATES], rot2[REPLICATES];
   for (int r = 0; r < REPLICATES; ++r) {
     rot1[r] = hash_u32(scramble ^ (2u * (uint)r + 1u));

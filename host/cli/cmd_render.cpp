@@ -181,10 +181,14 @@ struct LightingArgs {
   }
 };
 
-Image renderGltf(Runtime& rt, const LoadedAsset& l, const Scene& lighting, int spp, const std::string& gbufferOut) {
+Image renderGltf(Runtime& rt, const LoadedAsset& l, const Scene& lighting, int spp, const std::string& gbufferOut,
+                 const ShadeOptions& shadeOptions = {}) {
   gltf::Raycaster raycaster(l.asset);
   Shader shader(rt, lighting);
-  const Image img = gltf::renderFrame(shader, raycaster, l.view, l.width, l.height, spp, progressLine("brdfcl render"));
+  ShadeStats stats;
+  const Image img = gltf::renderFrame(shader, raycaster, l.view, l.width, l.height, spp, progressLine("brdfcl render"),
+                                      shadeOptions, &stats);
+  if (shadeOptions.ibl == IblMode::Exact) std::fprintf(stderr, "%s\n", exactIblSummary(stats).c_str());
   if (!gbufferOut.empty()) writeGBuffer(gbufferOut, raycaster.trace(l.view, l.width, l.height));
   return img;
 }
@@ -310,15 +314,12 @@ void addRenderCommands(CLI::App& app) {
       const Environment environment = a->lighting.environmentChoice(cmd);
       if (!a->gltf.path.empty()) {
         if (cmd->count("--scene")) throw Error("--scene and --gltf are alternatives; give one");
-        if (shadeOptions.ibl == IblMode::Exact)
-          throw Error("--ibl exact applies to the built-in spheres and to shade; glTF renders use the split sum "
-                      "(write a G-buffer with --gbuffer and shade it with --ibl exact)");
         const LoadedAsset l = loadAsset(a->gltf);
         const Scene lighting =
             gltf::frameLighting(l.asset, l.view, a->lighting.lights, environment, a->lighting.environmentGiven);
         Runtime rt(a->device);
         checkFrameFits(FrameJob::Render, l.width, l.height, usableHostMemory(), &rt.info());
-        writeImages(renderGltf(rt, l, lighting, a->spp, a->gbuffer), exr, png, a->exposure);
+        writeImages(renderGltf(rt, l, lighting, a->spp, a->gbuffer, shadeOptions), exr, png, a->exposure);
         return;
       }
       a->gltf.checkBuiltin(cmd);

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "brdfcl/demo_asset.hpp"
 #include "brdfcl/gallery.hpp"
 #include "brdfcl/image.hpp"
 #include "brdfcl/render.hpp"
@@ -316,6 +317,20 @@ TEST(ExactIblCli, ShadeAndRenderWriteImagesAndPrintTheErrorLine) {
   EXPECT_NE(s.err.find("brdfcl: exact IBL, 64 samples per pixel"), std::string::npos) << s.err;
 }
 
+// A glTF render shares the samples out over its sub-pixel frames, each with its own seed.
+TEST(ExactIblCli, GltfRenderIntegratesOverItsSubpixelFrames) {
+  ScratchDir dir("exactiblgltf");
+  gltf::writeDemoAsset(dir.path("demo.glb"));
+  const RunResult r = cli(dir, {"render", "--gltf", "demo.glb", "--size", "32x18", "--spp", "2", "--environment", "sky",
+                                "--ibl", "exact", "--ibl-samples", "32", "--out", "g.exr"});
+  ASSERT_EQ(r.status, 0) << r.describe();
+  EXPECT_NE(r.err.find("brdfcl: exact IBL, 32 samples per pixel: relative standard error of the image "), std::string::npos) << r.err;
+  int w = 0, h = 0;
+  const auto rgb = readExrRgb(dir.path("g.exr"), w, h);
+  EXPECT_EQ(w, 32);
+  EXPECT_GT(*std::max_element(rgb.begin(), rgb.end()), 0.0f);
+}
+
 TEST(ExactIblCli, BadValuesAreOneLineErrorsBeforeAnyWork) {
   ScratchDir dir("exactiblbad");
   struct Case {
@@ -329,9 +344,8 @@ TEST(ExactIblCli, BadValuesAreOneLineErrorsBeforeAnyWork) {
       // The G-buffer does not exist: the option is refused before it is read.
       {{"shade", "--gbuffer", "missing.exr", "--scene", "missing.json", "--ibl", "exact", "--ibl-samples", "65537", "--out", "x.exr"},
        "brdfcl: --ibl-samples 65537 is out of range; use 1 to 65536"},
-      {{"render", "--gltf", "missing.glb", "--ibl", "exact", "--out", "x.png"},
-       "brdfcl: --ibl exact applies to the built-in spheres and to shade; glTF renders use the split sum (write a "
-       "G-buffer with --gbuffer and shade it with --ibl exact)"},
+      {{"render", "--gltf", "missing.glb", "--ibl", "exact", "--ibl-samples", "-3", "--out", "x.png"},
+       "brdfcl: --ibl-samples -3 is out of range; use 1 to 65536"},
       {{"shade", "--gbuffer", "missing.exr", "--scene", "missing.json", "--ibl", "Exact", "--out", "x.exr"},
        "brdfcl: --ibl 'Exact' is not an image-based light mode; use split-sum or exact"},
   };

@@ -3,6 +3,7 @@
 // evaluation (kernels/brdf/material.h) and prepares its environment maps and tables once.
 #pragma once
 #include <cstddef>
+#include <cstdint>
 #include <functional>
 #include <memory>
 #include <string>
@@ -60,6 +61,7 @@ struct ShadeOptions {
   int iblSamples = 1024;  // exact: samples per pixel
   int chunkSamples = 0;   // exact: samples per launch (0: about 4M pixel-samples a launch); never changes the image
   std::function<void(int done, int total)> progress;  // exact: after each launch, samples done per pixel
+  unsigned seed = 0;  // exact: another seed rotates every pixel's sequence (independent estimates of one image)
 };
 
 // What the exact integrator measured: the mean over covered pixels (with light) of each pixel's

@@ -59,11 +59,23 @@ std::vector<std::array<float, 2>> subpixelOffsets(int spp) {
 }
 
 brdfcl::Image renderFrame(Shader& shader, const Raycaster& raycaster, const View& view, int width, int height, int spp,
-                  const std::function<void(int, int)>& progress) {
+                  const std::function<void(int, int)>& progress, const ShadeOptions& shadeOptions, ShadeStats* stats) {
   const auto offsets = subpixelOffsets(spp);
   brdfcl::Image sum;
+  // Exact image-based light: the samples are shared out over the sub-pixel frames, each with its
+  // own seed so that their errors are independent and average down.
+  ShadeOptions perFrame = shadeOptions;
+  perFrame.progress = {};
+  perFrame.iblSamples = (shadeOptions.iblSamples + spp - 1) / spp;
+  double relativeError = 0.0;
+  std::size_t covered = 0;
   for (std::size_t k = 0; k < offsets.size(); ++k) {
-    const brdfcl::Image one = shader.shade(raycaster.trace(view, width, height, offsets[k][0], offsets[k][1]));
+    perFrame.seed = shadeOptions.seed + unsigned(k);
+    ShadeStats frameStats;
+    const brdfcl::Image one =
+        shader.shade(raycaster.trace(view, width, height, offsets[k][0], offsets[k][1]), perFrame, &frameStats);
+    relativeError += frameStats.relativeStandardError;
+    covered = std::max(covered, frameStats.coveredPixels);
     if (k == 0) {
       sum = one;
     } else {
@@ -73,6 +85,11 @@ brdfcl::Image renderFrame(Shader& shader, const Raycaster& raycaster, const View
   }
   if (offsets.size() > 1)
     for (auto& v : sum.rgb) v /= float(offsets.size());
+  if (stats && shadeOptions.ibl == IblMode::Exact) {
+    stats->iblSamples = perFrame.iblSamples * spp;
+    stats->coveredPixels = covered;
+    stats->relativeStandardError = relativeError / double(spp) / std::sqrt(double(spp));
+  }
   return sum;
 }
 

@@ -125,6 +125,7 @@ void integrateExactIbl(Runtime& rt, const ExactIblInputs& in, const std::vector<
     k.setArg(a++, in.envShare);
     k.setArg(a++, *in.sheenE);
     k.setArg(a++, in.sheenESize);
+    k.setArg(a++, cl_uint(options.seed));
     const int beginArg = a++, endArg = a++;
     k.setArg(a++, bacc);
     for (int begin = 0; begin < total; begin += chunk) {
