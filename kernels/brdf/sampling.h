@@ -13,7 +13,7 @@ BRDF_FN vec3w vec3w_normalize(vec3w v) {
   return o;
 }
 
-/* Heitz 2018, listing 1: a visible normal of the GGX lobe (alphas ax along +X, ay along +Y) seen
+/* Heitz 2018, section 4 and its sampling routine: a visible normal of the GGX lobe (alphas ax along +X, ay along +Y) seen
    from Ve (Ve.z > 0), from (u1, u2) in [0, 1)^2. The view is stretched to the hemisphere
    configuration, a point is drawn on the projected disk (half of it warped by the visible
    hemisphere's foreshortening), lifted, and the normal unstretched. */
@@ -35,15 +35,16 @@ BRDF_FN vec3w SampleGGXVNDF(vec3w Ve, realw ax, realw ay, realw u1, realw u2) {
   return vec3w_normalize(Ne);
 }
 
-/* Smith G1 of the (anisotropic) GGX lobe for the direction W: 2 W.z / (W.z + |(ax Wx, ay Wy, Wz)|);
-   Heitz 2018 eq. 1's masking, with Lambda in closed form. */
+/* Smith masking G1 = 1 / (1 + Lambda(W)) of the (anisotropic) GGX lobe, with Lambda in closed
+   form: 2 W.z / (W.z + |(ax Wx, ay Wy, Wz)|) (Heitz 2018, section 2). */
 BRDF_FN realw G1_GGX(vec3w W, realw ax, realw ay) {
   realw s = sqrt(ax * ax * W.x * W.x + ay * ay * W.y * W.y + W.z * W.z);
   return 2.0f * W.z / (W.z + s);
 }
 
-/* pdf of L = reflect(V, H) with H from SampleGGXVNDF: D_V(H) / (4 V.H) = G1(V) D(H) / (4 V.z)
-   (Heitz 2018 eq. 17 with the reflection Jacobian 1 / (4 V.H)). L, V in the lobe's frame. */
+/* pdf of L = reflect(V, H) with H from SampleGGXVNDF: the visible-normal density
+   D_V(H) = G1(V) max(0, V.H) D(H) / V.z (Heitz 2018) times the reflection Jacobian 1 / (4 V.H),
+   = G1(V) D(H) / (4 V.z). L, V in the lobe's frame. */
 BRDF_FN realw PdfGGXVNDFReflect(vec3w L, vec3w V, realw ax, realw ay) {
   vec3w h = {L.x + V.x, L.y + V.y, L.z + V.z};
   realw h2 = max(dot3w(h, h), (realw)(1.0e-30f));
