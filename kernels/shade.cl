@@ -7,6 +7,7 @@
 #include "brdf/material.h"
 #include "common/material_pack.h"
 #include "common/environment.h"
+#include "common/gbuffer_pixel.h"
 
 typedef struct {
   __global const float* chain; int w0, h0, levels;
@@ -54,15 +55,6 @@ static inline float2 lut_aniso(__global const float* lut, float nv, float r, flo
   return acc;
 }
 
-static inline float3 frame_local(float3 d, float3 t, float3 b, float3 n) { return (float3)(dot(d, t), dot(d, b), dot(d, n)); }
-
-/* 004 layering needs a frame only for its normal: any tangent will do. */
-static inline void frame_from_normal(float3 n, float3* t, float3* b) {
-  float3 up = fabs(n.y) < 0.999f ? (float3)(0.0f, 1.0f, 0.0f) : (float3)(1.0f, 0.0f, 0.0f);
-  *t = normalize(cross(up, n));
-  *b = cross(n, *t);
-}
-
 static inline vec3w to_lanes(float3 v) { vec3w o = {v.x, v.y, v.z}; return o; }
 
 /* One launch shades the band of rows [y0, y0 + band_h): gb and out hold the band's planes only. */
@@ -75,7 +67,7 @@ __kernel void shade(__global const float* restrict gb, int width, int height, in
                     __global const float* restrict dfg, int dfg_size, __global const float* restrict aniso_dfg,
                     __global const float* restrict sheen_e,
                     int sheen_e_size, __global const float* restrict fresnel_lambert, int fl_size,
-                    __global float* restrict out) {
+                    int split_sum, __global float* restrict out) {
   int x = get_global_id(0), y = y0 + (int)get_global_id(1);
   if (x >= width || y >= height || y >= y0 + band_h) return;
   const int np = width * band_h, i = (y - y0) * width + x;
@@ -99,32 +91,9 @@ __kernel void shade(__global const float* restrict gb, int width, int height, in
                          sy * (float3)(cam.up[0], cam.up[1], cam.up[2]));
     result = env_chain(background, env_w, env_h, env_w, env_h, 1, d, env_rotation, 0.0f);
   } else {
-    /* Frame: N; T made orthogonal to N, or built from N when absent (docs/gbuffer.md). */
-    float3 P = (float3)(GB(GB_PX), GB(GB_PY), GB(GB_PZ));
-    float3 N = normalize((float3)(GB(GB_NX), GB(GB_NY), GB(GB_NZ)));
-    float3 T = (float3)(GB(GB_TX), GB(GB_TY), GB(GB_TZ));
-    T = T - dot(T, N) * N;
-    float3 B;
-    if (dot(T, T) > 1e-12f) {
-      T = normalize(T);
-      B = cross(N, T);
-    } else {
-      frame_from_normal(N, &T, &B);
-    }
-    float3 Nc = (float3)(GB(GB_CCN_X), GB(GB_CCN_Y), GB(GB_CCN_Z));
-    Nc = dot(Nc, Nc) > 1e-12f ? normalize(Nc) : N;
-    float3 Tc, Bc;
-    frame_from_normal(Nc, &Tc, &Bc);
-    float3 V = has_v ? normalize(Vg) : ortho ? -forward : normalize(eye - P);
-
-    brdfcl_material_params q;
-    q.base_color[0] = GB(GB_BASE_R); q.base_color[1] = GB(GB_BASE_G); q.base_color[2] = GB(GB_BASE_B);
-    q.metallic = GB(GB_METALLIC); q.roughness = GB(GB_ROUGHNESS);
-    q.sheen_color[0] = GB(GB_SHEEN_R); q.sheen_color[1] = GB(GB_SHEEN_G); q.sheen_color[2] = GB(GB_SHEEN_B);
-    q.sheen_roughness = GB(GB_SHEEN_ROUGHNESS);
-    q.draft = 0;
-    q.clearcoat = GB(GB_CLEARCOAT); q.clearcoat_roughness = GB(GB_CLEARCOAT_ROUGHNESS);
-    q.anisotropy_strength = GB(GB_ANISO_STRENGTH); q.anisotropy_rotation = GB(GB_ANISO_ROTATION);
+    gbuffer_pixel px = gbuffer_pixel_decode(gb, np, i, Vg, eye, forward, ortho);
+    float3 P = px.P, N = px.N, T = px.T, B = px.B, Nc = px.Nc, Tc = px.Tc, Bc = px.Bc, V = px.V;
+    brdfcl_material_params q = px.q;
     brdfcl_material packed = brdfcl_pack_material(q);
     material_lanes m = material_splat_private(&packed);
 
@@ -161,57 +130,60 @@ __kernel void shade(__global const float* restrict gb, int width, int height, in
       result += (float3)(f.r, f.g, f.b) * NdotL * radiance;
     }
 
-    /* Image-based light: split sum with the DFG table (F0 A + B); the dielectric's diffuse is
-       weighted by 1 - (0.04 + 0.96 C(N.V)), C the Fresnel-weighted Lambert albedo, so the pair
-       reproduces Appendix B's directional albedo; sheen uses view-only albedo scaling (000). */
-    float nv = max(NdotV, 1e-4f), rough = q.roughness;
-    float3 R = 2.0f * dot(N, V) * N - V;
-    float psi = 0.0f;
-    if (q.anisotropy_strength > 0.0f) {
-      /* 002 "Image-based lighting": bent normal towards the anisotropic direction. */
-      float3 Ta = normalize(cos(q.anisotropy_rotation) * T + sin(q.anisotropy_rotation) * B);
-      float3 Ba = cross(N, Ta);
-      /* The albedo is symmetric under Ta -> -Ta and Ba -> -Ba: the table holds [0, pi/2]. */
-      psi = atan2(fabs(dot(V, Ba)), fabs(dot(V, Ta)) + 1e-12f);
-      float3 bent = normalize(cross(cross(Ba, V), Ba));
-      float a = 1.0f - q.anisotropy_strength * (1.0f - rough);
-      a = a * a;
-      a = a * a;
-      bent = normalize(mix(bent, N, a));
-      R = normalize(mix(2.0f * dot(bent, V) * bent - V, bent, rough * rough));
-    }
-    float lod = rough * (float)(prefilter_levels - 1);
-    float3 spec = env_chain(ggx_chain, env_w, env_h, BRDFCL_PREFILTER_CAP_W, BRDFCL_PREFILTER_CAP_H, prefilter_levels, R,
-                            env_rotation, lod);
-    float3 irr = env_chain(irradiance, irr_w, irr_h, irr_w, irr_h, 1, N, env_rotation, 0.0f);
-    /* An anisotropic lobe's albedo depends on both alphas and on the view's azimuth, which no
-       isotropic look-up matches (10 % off at strength 1): it has its own table. Its radiance is
-       still read at the base roughness about the bent normal (002). */
-    float2 ab = q.anisotropy_strength > 0.0f ? lut_aniso(aniso_dfg, nv, rough, q.anisotropy_strength, psi)
-                                             : lut2(dfg, dfg_size, nv, rough);
-    float C = lut1(fresnel_lambert, fl_size, nv);
-    float3 base = (float3)(q.base_color[0], q.base_color[1], q.base_color[2]);
-    float3 dielectric = irr * base * (0.96f * (1.0f - C)) + spec * (0.04f * ab.x + ab.y);
-    float3 metal = spec * (base * ab.x + ab.y);
-    float3 ibl = mix(dielectric, metal, q.metallic);
-    float sheen_max = brdfcl_max3(q.sheen_color);
-    if (sheen_max > 0.0f) {
-      sheen_albedo_row row = E_SheenAlbedoRow(sheen_e_size, q.sheen_roughness);
-      float e = E_SheenAlbedo(sheen_e, sheen_e_size, row, nv);
-      float3 sheen_light = env_chain(charlie_chain, charlie_w, charlie_h, charlie_w, charlie_h, prefilter_levels, R,
-                                     env_rotation,
-                                     q.sheen_roughness * (float)(prefilter_levels - 1));
-      ibl = (float3)(q.sheen_color[0], q.sheen_color[1], q.sheen_color[2]) * sheen_light * e + (1.0f - sheen_max * e) * ibl;
-    }
     float ncv = max(dot(Nc, V), 1e-4f);
     float coat = q.clearcoat * (0.04f + 0.96f * pow5w(1.0f - ncv));
-    if (q.clearcoat > 0.0f) {
-      float3 Rc = 2.0f * dot(Nc, V) * Nc - V;
-      float2 abc = lut2(dfg, dfg_size, ncv, q.clearcoat_roughness);
-      float3 coat_light = env_chain(ggx_chain, env_w, env_h, BRDFCL_PREFILTER_CAP_W, BRDFCL_PREFILTER_CAP_H, prefilter_levels,
-                                    Rc, env_rotation,
-                                    q.clearcoat_roughness * (float)(prefilter_levels - 1));
-      ibl = (1.0f - coat) * ibl + coat * coat_light * (abc.x + abc.y);
+    /* Under --ibl exact the image-based light comes from kernels/ibl_exact.cl instead. */
+    float3 ibl = (float3)(0.0f);
+    if (split_sum) {
+      /* Image-based light: split sum with the DFG table (F0 A + B); the dielectric's diffuse is
+         weighted by 1 - (0.04 + 0.96 C(N.V)), C the Fresnel-weighted Lambert albedo, so the pair
+         reproduces Appendix B's directional albedo; sheen uses view-only albedo scaling (000). */
+      float nv = max(NdotV, 1e-4f), rough = q.roughness;
+      float3 R = 2.0f * dot(N, V) * N - V;
+      float psi = 0.0f;
+      if (q.anisotropy_strength > 0.0f) {
+        /* 002 "Image-based lighting": bent normal towards the anisotropic direction. */
+        float3 Ta = normalize(cos(q.anisotropy_rotation) * T + sin(q.anisotropy_rotation) * B);
+        float3 Ba = cross(N, Ta);
+        /* The albedo is symmetric under Ta -> -Ta and Ba -> -Ba: the table holds [0, pi/2]. */
+        psi = atan2(fabs(dot(V, Ba)), fabs(dot(V, Ta)) + 1e-12f);
+        float3 bent = normalize(cross(cross(Ba, V), Ba));
+        float a = 1.0f - q.anisotropy_strength * (1.0f - rough);
+        a = a * a;
+        a = a * a;
+        bent = normalize(mix(bent, N, a));
+        R = normalize(mix(2.0f * dot(bent, V) * bent - V, bent, rough * rough));
+      }
+      float lod = rough * (float)(prefilter_levels - 1);
+      float3 spec = env_chain(ggx_chain, env_w, env_h, BRDFCL_PREFILTER_CAP_W, BRDFCL_PREFILTER_CAP_H, prefilter_levels,
+                              R, env_rotation, lod);
+      float3 irr = env_chain(irradiance, irr_w, irr_h, irr_w, irr_h, 1, N, env_rotation, 0.0f);
+      /* An anisotropic lobe's albedo depends on both alphas and on the view's azimuth, which no
+         isotropic look-up matches (10 % off at strength 1): it has its own table. Its radiance is
+         still read at the base roughness about the bent normal (002). */
+      float2 ab = q.anisotropy_strength > 0.0f ? lut_aniso(aniso_dfg, nv, rough, q.anisotropy_strength, psi)
+                                               : lut2(dfg, dfg_size, nv, rough);
+      float C = lut1(fresnel_lambert, fl_size, nv);
+      float3 base = (float3)(q.base_color[0], q.base_color[1], q.base_color[2]);
+      float3 dielectric = irr * base * (0.96f * (1.0f - C)) + spec * (0.04f * ab.x + ab.y);
+      float3 metal = spec * (base * ab.x + ab.y);
+      ibl = mix(dielectric, metal, q.metallic);
+      float sheen_max = brdfcl_max3(q.sheen_color);
+      if (sheen_max > 0.0f) {
+        sheen_albedo_row row = E_SheenAlbedoRow(sheen_e_size, q.sheen_roughness);
+        float e = E_SheenAlbedo(sheen_e, sheen_e_size, row, nv);
+        float3 sheen_light = env_chain(charlie_chain, charlie_w, charlie_h, charlie_w, charlie_h, prefilter_levels, R,
+                                       env_rotation, q.sheen_roughness * (float)(prefilter_levels - 1));
+        ibl = (float3)(q.sheen_color[0], q.sheen_color[1], q.sheen_color[2]) * sheen_light * e + (1.0f - sheen_max * e) * ibl;
+      }
+      if (q.clearcoat > 0.0f) {
+        float3 Rc = 2.0f * dot(Nc, V) * Nc - V;
+        float2 abc = lut2(dfg, dfg_size, ncv, q.clearcoat_roughness);
+        float3 coat_light = env_chain(ggx_chain, env_w, env_h, BRDFCL_PREFILTER_CAP_W, BRDFCL_PREFILTER_CAP_H,
+                                      prefilter_levels, Rc, env_rotation,
+                                      q.clearcoat_roughness * (float)(prefilter_levels - 1));
+        ibl = (1.0f - coat) * ibl + coat * coat_light * (abc.x + abc.y);
+      }
     }
     /* glTF occlusion dims indirect light only: punctual lights and emission are not touched. */
     result += ibl * clamp(GB(GB_OCCLUSION), 0.0f, 1.0f);

@@ -141,6 +141,36 @@ std::function<void(int, int)> progressLine(const char* what, const char* unit) {
   };
 }
 
+// --ibl and --ibl-samples of shade and render, checked before any work.
+struct IblArgs {
+  std::string mode = "split-sum";
+  int samples = 1024;
+
+  void add(CLI::App* cmd) {
+    cmd->add_option("--ibl", mode, "image-based light: split-sum (prefiltered, the default) or exact (Monte Carlo ground truth)");
+    cmd->add_option("--ibl-samples", samples, "exact: samples per pixel, 1 to 65536 (default 1024)");
+  }
+  // `what` names the command in the progress line ("brdfcl shade").
+  ShadeOptions check(CLI::App* cmd, const char* what) const {
+    ShadeOptions o;
+    o.ibl = parseIblMode(mode);
+    checkIblSamples(samples);
+    if (o.ibl != IblMode::Exact && cmd->count("--ibl-samples")) throw Error("--ibl-samples applies to --ibl exact; add --ibl exact");
+    o.iblSamples = samples;
+    o.progress = o.ibl == IblMode::Exact ? progressLine("brdfcl: exact IBL", "samples per pixel")
+                                         : progressLine(what, "band");
+    return o;
+  }
+};
+
+// Shades under the chosen image-based light; exact mode reports its error estimate on stderr.
+Image shadeWith(Shader& shader, const GBuffer& g, const ShadeOptions& o) {
+  ShadeStats stats;
+  Image img = shader.shade(g, o, &stats);
+  if (o.ibl == IblMode::Exact) std::fprintf(stderr, "%s\n", exactIblSummary(stats).c_str());
+  return img;
+}
+
 // The options that choose light for render and demo.
 struct LightingArgs {
   std::string environment = "builtin", lights = "gltf";
@@ -159,10 +189,14 @@ struct LightingArgs {
   }
 };
 
-Image renderGltf(Runtime& rt, const LoadedAsset& l, const Scene& lighting, int spp, const std::string& gbufferOut) {
+Image renderGltf(Runtime& rt, const LoadedAsset& l, const Scene& lighting, int spp, const std::string& gbufferOut,
+                 const ShadeOptions& shadeOptions = {}) {
   gltf::Raycaster raycaster(l.asset);
   Shader shader(rt, lighting);
-  const Image img = gltf::renderFrame(shader, raycaster, l.view, l.width, l.height, spp, progressLine("brdfcl render", "sample"));
+  ShadeStats stats;
+  const Image img = gltf::renderFrame(shader, raycaster, l.view, l.width, l.height, spp, progressLine("brdfcl render", "sample"),
+                                      shadeOptions, &stats);
+  if (shadeOptions.ibl == IblMode::Exact) std::fprintf(stderr, "%s\n", exactIblSummary(stats).c_str());
   if (!gbufferOut.empty()) writeGBuffer(gbufferOut, raycaster.trace(l.view, l.width, l.height));
   return img;
 }
@@ -205,6 +239,7 @@ void addRenderCommands(CLI::App& app) {
       std::string gbuffer, scene, out, png, exr, device;
       float exposure = 0.0f;
       bool noCheck = false;
+      IblArgs ibl;
     };
     auto a = std::make_shared<Args>();
     auto* cmd = app.add_subcommand("shade", "Shade a G-buffer EXR under a scene's lights and environment");
@@ -216,7 +251,8 @@ void addRenderCommands(CLI::App& app) {
     cmd->add_option("--exposure", a->exposure, "exposure in stops for the PNG (default 0)");
     cmd->add_option("--device", a->device, "device index or name substring");
     cmd->add_flag("--no-check", a->noCheck, "skip the G-buffer's range checks (factors in [0, 1], unit normals)");
-    cmd->callback([a] {
+    a->ibl.add(cmd);
+    cmd->callback([a, cmd] {
       std::string exr = a->exr, png = a->png;
       if (lowerExtension(a->out) == ".png" && !isStream(a->out)) {
         if (!png.empty()) throw Error("--out is already the PNG; drop --png, or give --out FILE.exr");
@@ -232,6 +268,7 @@ void addRenderCommands(CLI::App& app) {
       checkOutput("--png", a->png, ".png");
       checkOutput("--exr", a->exr, ".exr");
       checkExposure(a->exposure);
+      const ShadeOptions shadeOptions = a->ibl.check(cmd, "brdfcl shade");
       GBufferReadOptions readOptions;
       readOptions.check = !a->noCheck;
       const GBuffer g = readGBuffer(a->gbuffer, readOptions);
@@ -241,7 +278,7 @@ void addRenderCommands(CLI::App& app) {
       checkFrameFits(FrameJob::Shade, g.width, g.height, usableHostMemory(), a->gbuffer);
       Runtime rt(a->device);
       Shader shader(rt, scene);
-      writeImages(shader.shade(g, progressLine("brdfcl shade", "band")), exr, png, a->exposure);
+      writeImages(shadeWith(shader, g, shadeOptions), exr, png, a->exposure);
     });
   }
   {
@@ -251,6 +288,7 @@ void addRenderCommands(CLI::App& app) {
       int spp = 4;
       GltfArgs gltf;
       LightingArgs lighting;
+      IblArgs ibl;
     };
     auto a = std::make_shared<Args>();
     auto* cmd = app.add_subcommand("render", "Render a glTF asset or a built-in scene (G-buffer + shading) to PNG (and EXR)");
@@ -259,6 +297,7 @@ void addRenderCommands(CLI::App& app) {
     cmd->add_option("--size", a->gltf.size, "WIDTHxHEIGHT (default 768x768 for spheres; 1280x720 or the camera's aspect at 720 rows)");
     cmd->add_option("--spp", a->spp, "stratified sub-pixel samples per pixel, glTF only (default 4)");
     a->lighting.add(cmd);
+    a->ibl.add(cmd);
     cmd->add_option("--exposure", a->exposure, "exposure in stops (default 0)");
     cmd->add_option("--out", a->out, "output tone-mapped .png, or linear radiance .exr")->required();
     cmd->add_option("--exr", a->exr, "also the linear radiance as .exr");
@@ -279,6 +318,7 @@ void addRenderCommands(CLI::App& app) {
       checkOutput("--gbuffer", a->gbuffer, ".exr");
       checkExposure(a->exposure);
       checkSpp(a->spp);
+      const ShadeOptions shadeOptions = a->ibl.check(cmd, "brdfcl render");
       const Environment environment = a->lighting.environmentChoice(cmd);
       if (!a->gltf.path.empty()) {
         if (cmd->count("--scene")) throw Error("--scene and --gltf are alternatives; give one");
@@ -287,7 +327,7 @@ void addRenderCommands(CLI::App& app) {
             gltf::frameLighting(l.asset, l.view, a->lighting.lights, environment, a->lighting.environmentGiven);
         checkFrameFits(FrameJob::Render, l.width, l.height, usableHostMemory());
         Runtime rt(a->device);
-        writeImages(renderGltf(rt, l, lighting, a->spp, a->gbuffer), exr, png, a->exposure);
+        writeImages(renderGltf(rt, l, lighting, a->spp, a->gbuffer, shadeOptions), exr, png, a->exposure);
         return;
       }
       a->gltf.checkBuiltin(cmd);
@@ -302,7 +342,7 @@ void addRenderCommands(CLI::App& app) {
       const GBuffer g = renderSpheresGBuffer(rt, scene, w, h);
       if (!a->gbuffer.empty()) writeGBuffer(a->gbuffer, g);
       Shader shader(rt, scene);
-      writeImages(shader.shade(g, progressLine("brdfcl render", "band")), exr, png, a->exposure);
+      writeImages(shadeWith(shader, g, shadeOptions), exr, png, a->exposure);
     });
   }
   {

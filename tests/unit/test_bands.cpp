@@ -62,13 +62,15 @@ TEST(Bands, ShadeReportsEachBand) {
   const Scene scene = spheresScene();
   const GBuffer g = renderSpheresGBuffer(runtime(), scene, 61, 37);
   std::vector<std::pair<int, int>> calls;
+  ShadeOptions options;
+  options.progress = [&](int done, int total) { calls.emplace_back(done, total); };
   {
     LaunchLimit l("100000");  // 12 rows of 61 pixels x 132 bytes per launch: 4 bands
-    Shader(runtime(), scene).shade(g, [&](int done, int total) { calls.emplace_back(done, total); });
+    Shader(runtime(), scene).shade(g, options);
   }
   EXPECT_EQ(calls, (std::vector<std::pair<int, int>>{{1, 4}, {2, 4}, {3, 4}, {4, 4}}));
   calls.clear();
-  Shader(runtime(), scene).shade(g, [&](int done, int total) { calls.emplace_back(done, total); });
+  Shader(runtime(), scene).shade(g, options);
   EXPECT_EQ(calls, (std::vector<std::pair<int, int>>{{1, 1}}));
 }
 

@@ -33,8 +33,11 @@ Scene frameLighting(const Asset& asset, const View& view, const std::string& lig
 std::vector<std::array<float, 2>> subpixelOffsets(int spp);
 
 // Traces and shades spp G-buffers and averages them (box filter). progress(done, spp) is called
-// after each sample when set.
+// after each sample when set. Under shadeOptions.ibl == Exact each sub-pixel sample integrates
+// ceil(iblSamples / spp) samples with its own seed, and `stats` (when given) receives the
+// image's estimate: the samples' total and the frames' mean relative error over sqrt(spp).
 brdfcl::Image renderFrame(Shader& shader, const Raycaster& raycaster, const View& view, int width, int height, int spp,
-                  const std::function<void(int, int)>& progress = {});
+                  const std::function<void(int, int)>& progress = {}, const ShadeOptions& shadeOptions = {},
+                  ShadeStats* stats = nullptr);
 
 }  // namespace brdfcl::gltf

@@ -2,6 +2,8 @@
 // "spheres" scene ray-cast on the device. The shader evaluates the same BRDF layers as batch
 // evaluation (kernels/brdf/material.h) and prepares its environment maps and tables once.
 #pragma once
+#include <cstddef>
+#include <cstdint>
 #include <functional>
 #include <memory>
 #include <string>
@@ -46,6 +48,35 @@ std::vector<float> environmentPlanes(const Environment& env, int& width, int& he
 // The IBL diffuse weight 1 - (0.04 + 0.96 C) then matches Appendix B's directional albedo.
 double fresnelWeightedLambert(double mu);
 
+// How image-based light is computed: the split sum (prefiltered chains and tables, the default)
+// or the exact Monte Carlo integral of radiance x f x N.L (kernels/ibl_exact.cl), the ground truth.
+enum class IblMode { SplitSum, Exact };
+IblMode parseIblMode(const std::string& s);  // "split-sum" | "exact"; else a one-line Error
+const char* toString(IblMode m);
+constexpr int kMaxIblSamples = 65536;
+void checkIblSamples(int samples);  // 1..kMaxIblSamples; else a one-line Error naming --ibl-samples
+
+struct ShadeOptions {
+  IblMode ibl = IblMode::SplitSum;
+  int iblSamples = 1024;  // exact: samples per pixel
+  int chunkSamples = 0;   // exact: samples per launch (0: about 4M pixel-samples a launch); never changes the image
+  // Exact: after each launch, samples done per pixel. Split sum: after each band of rows, bands
+  // done (one band unless the frame's planes exceed the device's largest allocation, bandRows).
+  std::function<void(int done, int total)> progress;
+  unsigned seed = 0;  // exact: another seed rotates every pixel's sequence (independent estimates of one image)
+};
+
+// What the exact integrator measured: the mean over covered pixels (with light) of each pixel's
+// standard error of its image-based luminance (the spread of four independently rotated copies
+// of its sample sequence) over that luminance.
+struct ShadeStats {
+  int iblSamples = 0;
+  std::size_t coveredPixels = 0;
+  double relativeStandardError = 0.0;
+};
+// "brdfcl: exact IBL, N samples per pixel: relative standard error of the image X % (mean over covered pixels)"
+std::string exactIblSummary(const ShadeStats& stats);
+
 class Shader {
  public:
   Shader(Runtime& rt, const Scene& scene, EvalOptions options = {});
@@ -53,9 +84,10 @@ class Shader {
   // Not for concurrent calls on one Shader: it keeps its G-buffer planes between frames.
   // Pixels without V look from the scene's camera when it has one (Scene::hasCamera), else from
   // the G-buffer's (GBuffer::camera), else from the scene's stand-in defaults.
-  // `progress` (if set) hears (bands done, bands) after each band of rows: one band unless the
-  // frame's planes exceed the device's largest allocation (see bandRows).
-  Image shade(const GBuffer& g, const std::function<void(int, int)>& progress = {});
+  Image shade(const GBuffer& g);
+  // The same with a choice of image-based light; ShadeOptions{} gives shade(g)'s bytes. `stats`,
+  // when given, receives the exact integrator's error estimate (left as is under the split sum).
+  Image shade(const GBuffer& g, const ShadeOptions& options, ShadeStats* stats = nullptr);
 
  private:
   struct State;

@@ -59,14 +59,25 @@ std::vector<std::array<float, 2>> subpixelOffsets(int spp) {
 }
 
 brdfcl::Image renderFrame(Shader& shader, const Raycaster& raycaster, const View& view, int width, int height, int spp,
-                  const std::function<void(int, int)>& progress) {
+                  const std::function<void(int, int)>& progress, const ShadeOptions& shadeOptions, ShadeStats* stats) {
   const auto offsets = subpixelOffsets(spp);
   brdfcl::Image sum;
+  // Exact image-based light: the samples are shared out over the sub-pixel frames, each with its
+  // own seed so that their errors are independent and average down.
+  ShadeOptions perFrame = shadeOptions;
+  perFrame.progress = {};
+  perFrame.iblSamples = (shadeOptions.iblSamples + spp - 1) / spp;
+  double relativeError = 0.0;
+  std::size_t covered = 0;
   // One G-buffer for every sample: traced into again, its pages are not faulted in per sample.
   GBuffer g;
   for (std::size_t k = 0; k < offsets.size(); ++k) {
+    perFrame.seed = shadeOptions.seed + unsigned(k);
+    ShadeStats frameStats;
     raycaster.trace(view, width, height, offsets[k][0], offsets[k][1], g);
-    const brdfcl::Image one = shader.shade(g);
+    const brdfcl::Image one = shader.shade(g, perFrame, &frameStats);
+    relativeError += frameStats.relativeStandardError;
+    covered = std::max(covered, frameStats.coveredPixels);
     if (k == 0) {
       sum = one;
     } else {
@@ -76,6 +87,11 @@ brdfcl::Image renderFrame(Shader& shader, const Raycaster& raycaster, const View
   }
   if (offsets.size() > 1)
     for (auto& v : sum.rgb) v /= float(offsets.size());
+  if (stats && shadeOptions.ibl == IblMode::Exact) {
+    stats->iblSamples = perFrame.iblSamples * spp;
+    stats->coveredPixels = covered;
+    stats->relativeStandardError = relativeError / double(spp) / std::sqrt(double(spp));
+  }
   return sum;
 }
 

@@ -19,6 +19,7 @@
 #include "brdfcl/render.hpp"
 #include "kernels/common/shading_layout.h"
 #include "model/pack.hpp"
+#include "render/exact_ibl.hpp"
 
 namespace brdfcl {
 
@@ -389,10 +390,15 @@ struct Shader::State {
   cl::Program program;
   std::vector<float> planes;  // the G-buffer's planes, kept between frames (see gbufferPlanes)
   std::pair<std::size_t, cl::Buffer> planesOnDevice;  // their device copy, and its size in floats
+  // --ibl exact, prepared on its first use: the integrator and the environment's CDFs.
+  bool exactReady = false;
+  cl::Program exactProgram;
+  cl::Buffer envRows, envCols, envTexelP;
+  float envShare = 0.0f;
 };
 
 Shader::Shader(Runtime& rt, const Scene& scene, EvalOptions options)
-    : s_(std::make_unique<State>(State{rt, scene, options, nullptr, {}, 0, {}, {}, {}})) {
+    : s_(std::make_unique<State>(State{rt, scene, options, nullptr, {}, 0, {}, {}, {}, false, {}, {}, {}, {}, 0.0f})) {
   auto& s = *s_;
   s.light = prepareLight(rt, scene.environment, options);
   try {
@@ -570,8 +576,12 @@ cl::Buffer anisotropicDfgFor(Runtime& rt, const GBuffer& g) {
 }
 }  // namespace
 
-Image Shader::shade(const GBuffer& g, const std::function<void(int, int)>& progress) {
+Image Shader::shade(const GBuffer& g) { return shade(g, ShadeOptions{}, nullptr); }
+
+Image Shader::shade(const GBuffer& g, const ShadeOptions& options, ShadeStats* stats) {
   auto& s = *s_;
+  const bool exact = options.ibl == IblMode::Exact;
+  if (exact) checkIblSamples(options.iblSamples);
   auto& planes = s.planes;
   gbufferPlanes(g, planes);
   Image img;
@@ -622,6 +632,7 @@ Image Shader::shade(const GBuffer& g, const std::function<void(int, int)>& progr
     k.setArg(a++, s.light->sheenESize);
     k.setArg(a++, s.light->fresnelLambert);
     k.setArg(a++, kFresnelLambertSize);
+    k.setArg(a++, exact ? 0 : 1);
     k.setArg(a++, bo);
     auto& q = s.rt.queue();
     for (int y0 = 0; y0 < g.height; y0 += band) {
@@ -635,10 +646,62 @@ Image Shader::shade(const GBuffer& g, const std::function<void(int, int)>& progr
       for (int c = 0; c < 3; ++c)
         q.enqueueReadBuffer(bo, CL_FALSE, c * bandPixels * 4, bandPixels * 4, out.data() + c * np + first);
       q.finish();
-      if (progress) progress(y0 / band + 1, (g.height + band - 1) / band);
+      if (!exact && options.progress) options.progress(y0 / band + 1, (g.height + band - 1) / band);
+    }
+    if (exact && !s.exactReady) {
+      // The CDFs come from the full-resolution map the kernel reads, as it is on the device.
+      std::vector<float> env(3 * std::size_t(s.light->envW) * s.light->envH);
+      s.rt.queue().enqueueReadBuffer(s.light->background, CL_TRUE, 0, env.size() * 4, env.data());
+      const auto cdf = detail::environmentCdf(env, s.light->envW, s.light->envH);
+      s.envRows = readOnly(ctx, cdf.rows);
+      s.envCols = readOnly(ctx, cdf.cols);
+      s.envTexelP = readOnly(ctx, cdf.texelP);
+      s.envShare = cdf.share;
+      FeatureSet all;
+      all.sheen = all.ratifiedSheen = all.clearcoat = all.anisotropy = true;
+      EvalOptions o = s.options;
+      o.lobe = Lobe::All;
+      s.exactProgram = s.rt.program("ibl_exact.cl", materialDefines(o, all));
+      s.exactReady = true;
     }
   } catch (const cl::Error&) {
     rethrowOpenCL("shading the G-buffer");
+  }
+  if (exact) {
+    // The exact integrator reads the whole frame's planes: the split-sum pass's device copy when
+    // it held the frame in one band, else a copy of its own, which must fit one allocation.
+    cl::Buffer whole;
+    if (s.planesOnDevice.first == planes.size()) {
+      whole = s.planesOnDevice.second;
+    } else {
+      if (planes.size() * 4 > s.rt.info().maxAlloc)
+        throw Error(fmt::format("--ibl exact: a {}x{} G-buffer needs a {:.1f} GiB device buffer, but '{}' allows {:.1f} GiB; "
+                                "use a smaller --size or --ibl split-sum",
+                                g.width, g.height, double(planes.size() * 4) / (1u << 30), s.rt.info().name,
+                                double(s.rt.info().maxAlloc) / (1u << 30)));
+      try {
+        whole = readOnly(s.rt.context(), planes);
+      } catch (const cl::Error&) {
+        rethrowOpenCL("preparing the exact image-based light");
+      }
+    }
+    detail::ExactIblInputs in;
+    in.program = s.exactProgram;
+    in.gbuffer = &whole;
+    in.width = g.width;
+    in.height = g.height;
+    in.camera = s.scene.hasCamera || !g.camera ? cameraFor(s.scene, g.width, g.height) : cameraFor(*g.camera, g.width, g.height);
+    in.environment = &s.light->background;
+    in.rows = &s.envRows;
+    in.cols = &s.envCols;
+    in.texelP = &s.envTexelP;
+    in.envW = s.light->envW;
+    in.envH = s.light->envH;
+    in.envShare = s.envShare;
+    in.rotation = s.scene.environment.rotation;
+    in.sheenE = &s.light->sheenE;
+    in.sheenESize = s.light->sheenESize;
+    detail::integrateExactIbl(s.rt, in, planes, options, out, stats);
   }
   img.rgb.resize(3 * np);
   for (std::size_t i = 0; i < np; ++i)

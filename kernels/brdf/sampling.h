@@ -1,0 +1,81 @@
+/* Importance sampling of the layered BRDF's lobes, over width-generic lanes: GGX visible normals
+   (Heitz 2018, "Sampling the GGX Distribution of Visible Normals", JCGT 7(4)), anisotropic or not,
+   and the cosine and uniform hemispheres. Each sampler has its pdf in solid angle of L beside it. */
+#ifndef BRDFCL_SAMPLING_H
+#define BRDFCL_SAMPLING_H
+
+#include "common/lanes.h"
+#include "brdf/terms.h"
+
+BRDF_FN vec3w vec3w_normalize(vec3w v) {
+  realw inv = rsqrt(max(dot3w(v, v), (realw)(1.0e-30f)));
+  vec3w o = {v.x * inv, v.y * inv, v.z * inv};
+  return o;
+}
+
+/* Heitz 2018, section 4 and its sampling routine: a visible normal of the GGX lobe (alphas ax along +X, ay along +Y) seen
+   from Ve (Ve.z > 0), from (u1, u2) in [0, 1)^2. The view is stretched to the hemisphere
+   configuration, a point is drawn on the projected disk (half of it warped by the visible
+   hemisphere's foreshortening), lifted, and the normal unstretched. */
+BRDF_FN vec3w SampleGGXVNDF(vec3w Ve, realw ax, realw ay, realw u1, realw u2) {
+  vec3w s = {ax * Ve.x, ay * Ve.y, Ve.z};
+  vec3w Vh = vec3w_normalize(s);
+  realw lensq = Vh.x * Vh.x + Vh.y * Vh.y;
+  realw inv_len = rsqrt(max(lensq, (realw)(1.0e-30f)));
+  intw tilted = lensq > 0.0f;
+  vec3w T1 = {select((realw)(1.0f), -Vh.y * inv_len, tilted), select((realw)(0.0f), Vh.x * inv_len, tilted), (realw)(0.0f)};
+  vec3w T2 = {Vh.y * T1.z - Vh.z * T1.y, Vh.z * T1.x - Vh.x * T1.z, Vh.x * T1.y - Vh.y * T1.x};
+  realw r = sqrt(u1), phi = 2.0f * M_PI_F * u2;
+  realw t1 = r * cos(phi), t2 = r * sin(phi);
+  realw sh = 0.5f * (1.0f + Vh.z);
+  t2 = (1.0f - sh) * sqrt(max(1.0f - t1 * t1, (realw)(0.0f))) + sh * t2;
+  realw tz = sqrt(max(1.0f - t1 * t1 - t2 * t2, (realw)(0.0f)));
+  vec3w Nh = {t1 * T1.x + t2 * T2.x + tz * Vh.x, t1 * T1.y + t2 * T2.y + tz * Vh.y, t1 * T1.z + t2 * T2.z + tz * Vh.z};
+  vec3w Ne = {ax * Nh.x, ay * Nh.y, max(Nh.z, (realw)(0.0f))};
+  return vec3w_normalize(Ne);
+}
+
+/* Smith masking G1 = 1 / (1 + Lambda(W)) of the (anisotropic) GGX lobe, with Lambda in closed
+   form: 2 W.z / (W.z + |(ax Wx, ay Wy, Wz)|) (Heitz 2018, section 2). */
+BRDF_FN realw G1_GGX(vec3w W, realw ax, realw ay) {
+  realw s = sqrt(ax * ax * W.x * W.x + ay * ay * W.y * W.y + W.z * W.z);
+  return 2.0f * W.z / (W.z + s);
+}
+
+/* pdf of L = reflect(V, H) with H from SampleGGXVNDF: the visible-normal density
+   D_V(H) = G1(V) max(0, V.H) D(H) / V.z (Heitz 2018) times the reflection Jacobian 1 / (4 V.H),
+   = G1(V) D(H) / (4 V.z). L, V in the lobe's frame. */
+BRDF_FN realw PdfGGXVNDFReflect(vec3w L, vec3w V, realw ax, realw ay) {
+  vec3w h = {L.x + V.x, L.y + V.y, L.z + V.z};
+  realw h2 = max(dot3w(h, h), (realw)(1.0e-30f));
+  realw D = D_GGX_Anisotropic(h.x, h.y, h.z, h2, ax, ay);
+  realw Vz = max(V.z, (realw)(1.0e-4f));
+  realw pdf = G1_GGX(V, ax, ay) * D / (4.0f * Vz);
+  return keep_or_zero(pdf, (L.z > 0.0f) & (h.z > 0.0f));
+}
+
+/* L = 2 (V.H) H - V. */
+BRDF_FN vec3w reflect_about(vec3w V, vec3w H) {
+  realw k = 2.0f * dot3w(V, H);
+  vec3w L = {k * H.x - V.x, k * H.y - V.y, k * H.z - V.z};
+  return L;
+}
+
+/* Malley's method: a uniform point on the disk lifted to the hemisphere; pdf N.L / pi. */
+BRDF_FN vec3w SampleCosineHemisphere(realw u1, realw u2) {
+  realw r = sqrt(u1), phi = 2.0f * M_PI_F * u2;
+  vec3w L = {r * cos(phi), r * sin(phi), sqrt(max(1.0f - u1, (realw)(0.0f)))};
+  return L;
+}
+BRDF_FN realw PdfCosineHemisphere(vec3w L) { return max(L.z, (realw)(0.0f)) * M_1_PI_F; }
+
+/* Uniform over the upper hemisphere; pdf 1 / (2 pi). The sheen lobe peaks towards grazing
+   angles, where a cosine density would starve it. */
+BRDF_FN vec3w SampleUniformHemisphere(realw u1, realw u2) {
+  realw z = u1, r = sqrt(max(1.0f - z * z, (realw)(0.0f))), phi = 2.0f * M_PI_F * u2;
+  vec3w L = {r * cos(phi), r * sin(phi), z};
+  return L;
+}
+BRDF_FN realw PdfUniformHemisphere(vec3w L) { return select((realw)(0.0f), (realw)(0.5f * M_1_PI_F), L.z > 0.0f); }
+
+#endif
