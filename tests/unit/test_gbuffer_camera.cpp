@@ -427,7 +427,7 @@ TEST(GBufferCamera, ShadeWarnsWhenTheCamerasDiffer) {
   // A rotated view is named in degrees; so is a rolled one.
   Scene turned = spheresScene();
   turned.cameraTarget = {1, 0, 0};
-  const GBufferCamera& made = *readGBuffer(g).camera;
+  const GBufferCamera made = *readGBuffer(g).camera;  // a copy: the G-buffer read is a temporary
   EXPECT_EQ(cameraDifference(turned, made), "view direction differs by 4.4°");
   GBufferCamera rolled = made;
   rolled.up = {0.0f, -1.0f, 0.0f};
