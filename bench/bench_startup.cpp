@@ -21,13 +21,7 @@ struct Scratch {
   brdfcl::test::ScratchDir dir{"bench-startup"};
   std::map<std::string, std::string> warm, cold;
   Scratch() {
-    std::string pocl;
-    if (const char* p = std::getenv("POCL_CACHE_DIR"); p && *p)
-      pocl = p;
-    else if (const char* x = std::getenv("XDG_CACHE_HOME"); x && *x)
-      pocl = std::string(x) + "/pocl";
-    else if (const char* h = std::getenv("HOME"); h && *h)
-      pocl = std::string(h) + "/.cache/pocl";
+    const std::string pocl = brdfcl::test::poclCacheDir();
     warm["XDG_CACHE_HOME"] = dir.path("warm-cache");
     if (!pocl.empty()) warm["POCL_CACHE_DIR"] = cold["POCL_CACHE_DIR"] = pocl;
   }

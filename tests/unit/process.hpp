@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <chrono>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -126,6 +127,15 @@ inline RunResult runProcess(std::vector<std::string> argv, const std::string& sc
 }  // namespace brdfcl::test
 
 namespace brdfcl::test {
+
+// Where PoCL keeps its compiled kernels for this process: a child given its own XDG_CACHE_HOME
+// keeps them by being given this as POCL_CACHE_DIR ("" when nothing locates it).
+inline std::string poclCacheDir() {
+  if (const char* p = std::getenv("POCL_CACHE_DIR"); p && *p) return p;
+  if (const char* x = std::getenv("XDG_CACHE_HOME"); x && *x) return std::string(x) + "/pocl";
+  if (const char* h = std::getenv("HOME"); h && *h) return std::string(h) + "/.cache/pocl";
+  return "";
+}
 
 // A fresh directory under the system temp dir, removed with everything in it on destruction.
 class ScratchDir {

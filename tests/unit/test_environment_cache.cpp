@@ -37,13 +37,7 @@ std::map<std::string, std::string> childEnvironment(const ScratchDir& dir) {
   if (!mine.empty() && fs::is_directory(mine, ec))
     for (const auto& e : fs::directory_iterator(mine, ec))
       if (e.path().filename().string().rfind("sheen_e_", 0) == 0) fs::copy_file(e.path(), theirs / e.path().filename(), ec);
-  std::string pocl;
-  if (const char* p = std::getenv("POCL_CACHE_DIR"); p && *p)
-    pocl = p;
-  else if (const char* x = std::getenv("XDG_CACHE_HOME"); x && *x)
-    pocl = std::string(x) + "/pocl";
-  else if (const char* h = std::getenv("HOME"); h && *h)
-    pocl = std::string(h) + "/.cache/pocl";
+  const std::string pocl = brdfcl::test::poclCacheDir();
   std::map<std::string, std::string> env{{"XDG_CACHE_HOME", dir.path("cache")}};
   if (!pocl.empty()) env["POCL_CACHE_DIR"] = pocl;
   return env;
