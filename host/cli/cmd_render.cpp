@@ -1,7 +1,6 @@
 // `brdfcl gbuffer`, `brdfcl shade`, `brdfcl render` and `brdfcl demo`: G-buffers of the built-in
 // spheres or of a glTF asset, deferred shading of any G-buffer under a scene's lights and
 // environment, and both chained into linear EXR radiance and a tone-mapped PNG.
-#include <sys/stat.h>
 #include <unistd.h>
 
 #include <chrono>
@@ -22,6 +21,7 @@
 #include "brdfcl/io.hpp"
 #include "brdfcl/render.hpp"
 #include "commands.hpp"
+#include "host/src/io/output.hpp"
 
 namespace brdfcl::cli {
 
@@ -44,15 +44,8 @@ std::string lowerExtension(const std::string& path) {
   return e;
 }
 
-// "-" (stdout) and an existing FIFO or device take the format the option implies: the name of
-// a stream says nothing about its format.
-bool isStream(const std::string& path) {
-  struct stat st {};
-  return path == "-" || (::stat(path.c_str(), &st) == 0 && !S_ISREG(st.st_mode) && !S_ISDIR(st.st_mode));
-}
-
 void requireExtension(const std::string& option, const std::string& path, const char* extension) {
-  if (!path.empty() && !isStream(path) && lowerExtension(path) != extension)
+  if (!path.empty() && !detail::isStreamTarget(path) && lowerExtension(path) != extension)
     throw Error(fmt::format("{} '{}' must end in {}", option, path, extension));
 }
 
@@ -254,11 +247,11 @@ void addRenderCommands(CLI::App& app) {
     a->ibl.add(cmd);
     cmd->callback([a, cmd] {
       std::string exr = a->exr, png = a->png;
-      if (lowerExtension(a->out) == ".png" && !isStream(a->out)) {
+      if (lowerExtension(a->out) == ".png" && !detail::isStreamTarget(a->out)) {
         if (!png.empty()) throw Error("--out is already the PNG; drop --png, or give --out FILE.exr");
         png = a->out;
       } else {
-        if (lowerExtension(a->out) != ".exr" && !isStream(a->out))
+        if (lowerExtension(a->out) != ".exr" && !detail::isStreamTarget(a->out))
           throw Error(fmt::format("--out '{}' must end in .exr or .png", a->out));
         if (!exr.empty()) throw Error("--out is already the EXR; drop --exr, or give --out FILE.png");
         exr = a->out;
@@ -305,11 +298,11 @@ void addRenderCommands(CLI::App& app) {
     cmd->add_option("--device", a->device, "device index or name substring");
     cmd->callback([a, cmd] {
       std::string png = a->out, exr = a->exr;
-      if (lowerExtension(a->out) == ".exr" && !isStream(a->out)) {
+      if (lowerExtension(a->out) == ".exr" && !detail::isStreamTarget(a->out)) {
         if (!exr.empty()) throw Error("--out is already the EXR; drop --exr, or give --out FILE.png");
         exr = a->out;
         png.clear();
-      } else if (lowerExtension(a->out) != ".png" && !isStream(a->out)) {
+      } else if (lowerExtension(a->out) != ".png" && !detail::isStreamTarget(a->out)) {
         throw Error(fmt::format("--out '{}' must end in .png or .exr", a->out));
       }
       checkOneStdout({{"--out", &a->out}, {"--exr", &a->exr}, {"--gbuffer", &a->gbuffer}});

@@ -23,6 +23,7 @@
 #include "brdfcl/image.hpp"
 #include "brdfcl/io.hpp"
 #include "brdfcl/lut.hpp"
+#include "host/src/io/output.hpp"
 #include "process.hpp"
 
 namespace fs = std::filesystem;
@@ -272,6 +273,20 @@ TEST(OutputFiles, DirectoryIsRefusedByEveryWriter) {
                                                       "name a file inside it"}));
   EXPECT_TRUE(fs::is_empty(p));
   EXPECT_FALSE(hasTemporary(d));
+}
+
+// What the commands ask before choosing a format by extension: the targets written in place.
+TEST(OutputFiles, StreamTargetsAreStdoutFifosAndDevicesOnly) {
+  ScratchDir d("out-stream");
+  ASSERT_EQ(::mkfifo(d.path("f").c_str(), 0600), 0);
+  std::ofstream(d.path("r.png")) << "x";
+  EXPECT_TRUE(brdfcl::detail::isStreamTarget("-"));
+  EXPECT_TRUE(brdfcl::detail::isStreamTarget("/dev/stdout"));
+  EXPECT_TRUE(brdfcl::detail::isStreamTarget("/dev/null"));
+  EXPECT_TRUE(brdfcl::detail::isStreamTarget(d.path("f")));
+  EXPECT_FALSE(brdfcl::detail::isStreamTarget(d.path("r.png")));
+  EXPECT_FALSE(brdfcl::detail::isStreamTarget(d.path("missing.png")));
+  EXPECT_FALSE(brdfcl::detail::isStreamTarget(d.dir()));
 }
 
 TEST(OutputFiles, CheckOutputPathAcceptsDashFifosAndLinks) {

@@ -42,15 +42,26 @@ bool isFileName(const std::string& path) {
 
 }  // namespace
 
+namespace {
+// /dev/stdout too: reopening it through /proc would lose the shell's O_APPEND (">>").
+bool isStdout(const std::string& userPath) { return userPath == "-" || userPath == "/dev/stdout"; }
+
+// Replacing a FIFO or a device by a file would hide the output from whoever reads it.
+bool isExistingNonRegular(const struct stat& st) { return !S_ISREG(st.st_mode) && !S_ISDIR(st.st_mode); }
+}  // namespace
+
+bool isStreamTarget(const std::string& userPath) {
+  struct stat st {};
+  return isStdout(userPath) || (::stat(userPath.c_str(), &st) == 0 && isExistingNonRegular(st));
+}
+
 OutputTarget resolveOutputWithHead(const std::string& userPath, const std::string& head) {
-  // /dev/stdout too: reopening it through /proc would lose the shell's O_APPEND (">>").
-  if (userPath == "-" || userPath == "/dev/stdout") return {OutputKind::Stdout, userPath};
+  if (isStdout(userPath)) return {OutputKind::Stdout, userPath};
   if (!isFileName(userPath)) throw Error(head + "not a file name");
   struct stat st {};
   if (::stat(userPath.c_str(), &st) == 0) {
     if (S_ISDIR(st.st_mode)) throw Error(head + "it is a directory; name a file inside it");
-    // Replacing a FIFO or a device by a file would hide the output from whoever reads it.
-    if (!S_ISREG(st.st_mode)) return {OutputKind::Stream, userPath};
+    if (isExistingNonRegular(st)) return {OutputKind::Stream, userPath};
   }
   // A regular file or nothing yet: the atomic rename must happen at the end of the link chain,
   // in the target's directory, or the link itself would be replaced by a plain file.

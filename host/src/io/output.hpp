@@ -19,6 +19,11 @@ struct OutputTarget {
   std::string path;
 };
 
+// True when `userPath` is written in place rather than through a temporary: "-", /dev/stdout, an
+// existing FIFO, character device or other non-regular file (not a directory). Its name says
+// nothing about its format, so commands give it the format their option implies.
+bool isStreamTarget(const std::string& userPath);
+
 // Throws Error "cannot write '<path>': ..." for a directory, a name that is not a file name and
 // a symlink loop.
 OutputTarget resolveOutput(const std::string& userPath);
