@@ -41,6 +41,10 @@ struct MaterialParams {
   float anisotropyStrength = 0.0f;
   float anisotropyRotation = 0.0f;  // radians, counter-clockwise from T in the tangent plane
 
+  // KHR_materials_ior. The spec profile's f has no IOR input (F0 stays 0.04); the engine profiles
+  // read it as their engines do (docs/profiles.md).
+  float ior = 1.5f;
+
   // Emission is not part of f; kept for the G-buffer path.
   Rgb emissive{0.0f, 0.0f, 0.0f};
 };
@@ -49,12 +53,17 @@ enum class SheenVisibility { Charlie, Ashikhmin };
 enum class SheenDistribution { Charlie, Ashikhmin };
 enum class SheenScaling { Min, View, None };
 enum class Lobe { All, Diffuse, Specular, Sheen, Clearcoat };
+// Whose BRDF is evaluated: the ratified specs, or one engine's maths (docs/profiles.md).
+enum class Profile { Spec, Khronos, Threejs, Filament, Babylon, Materialx };
+inline constexpr Profile kAllProfiles[] = {Profile::Spec,     Profile::Khronos, Profile::Threejs,
+                                           Profile::Filament, Profile::Babylon, Profile::Materialx};
 
 struct EvalOptions {
   SheenVisibility sheenVisibility = SheenVisibility::Charlie;
   SheenDistribution sheenDistribution = SheenDistribution::Charlie;
   SheenScaling sheenScaling = SheenScaling::Min;
   Lobe lobe = Lobe::All;
+  Profile profile = Profile::Spec;
 };
 
 // Parsing and printing of the option values, as the CLI spells them ("charlie", "min", ...).
@@ -63,9 +72,11 @@ SheenVisibility parseSheenVisibility(const std::string& s);
 SheenDistribution parseSheenDistribution(const std::string& s);
 SheenScaling parseSheenScaling(const std::string& s);
 Lobe parseLobe(const std::string& s);
+Profile parseProfile(const std::string& s);
 const char* toString(SheenVisibility v);
 const char* toString(SheenDistribution d);
 const char* toString(SheenScaling s);
 const char* toString(Lobe l);
+const char* toString(Profile p);
 
 }  // namespace brdfcl

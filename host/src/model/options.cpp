@@ -26,6 +26,9 @@ constexpr Spelling<Lobe> kLobe[] = {{Lobe::All, "all"},
                                     {Lobe::Specular, "specular"},
                                     {Lobe::Sheen, "sheen"},
                                     {Lobe::Clearcoat, "clearcoat"}};
+constexpr Spelling<Profile> kProfile[] = {{Profile::Spec, "spec"},         {Profile::Khronos, "khronos"},
+                                          {Profile::Threejs, "threejs"},   {Profile::Filament, "filament"},
+                                          {Profile::Babylon, "babylon"},   {Profile::Materialx, "materialx"}};
 
 // The message must stay on one line even if the argument does not.
 std::string printable(const std::string& s) {
@@ -63,10 +66,12 @@ SheenDistribution parseSheenDistribution(const std::string& s) {
 }
 SheenScaling parseSheenScaling(const std::string& s) { return parseFrom(kScaling, "--sheen-scaling", s); }
 Lobe parseLobe(const std::string& s) { return parseFrom(kLobe, "--lobe", s); }
+Profile parseProfile(const std::string& s) { return parseFrom(kProfile, "--profile", s); }
 
 const char* toString(SheenVisibility v) { return nameOf(kVisibility, v); }
 const char* toString(SheenDistribution d) { return nameOf(kDistribution, d); }
 const char* toString(SheenScaling s) { return nameOf(kScaling, s); }
 const char* toString(Lobe l) { return nameOf(kLobe, l); }
+const char* toString(Profile p) { return nameOf(kProfile, p); }
 
 }  // namespace brdfcl
