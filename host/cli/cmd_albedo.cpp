@@ -10,6 +10,7 @@
 #include "brdfcl/gallery.hpp"
 #include "brdfcl/io.hpp"
 #include "commands.hpp"
+#include "model_options.hpp"
 
 namespace brdfcl::cli {
 
@@ -18,7 +19,7 @@ struct AlbedoArgs {
   std::string device, materials;
   long long material = -1;
   bool strict = false;
-  std::string visibility = "charlie", distribution = "charlie", scaling = "min";
+  ModelArgs model;
 };
 }  // namespace
 
@@ -28,15 +29,10 @@ void addAlbedoCommand(CLI::App& app) {
   cmd->add_option("--materials", args->materials, "glTF 2.0 JSON (or .glb) whose materials to integrate (default: the built-in gallery)");
   cmd->add_option("--material", args->material, "only this material index of --materials (default: all)");
   cmd->add_flag("--strict", args->strict, "unknown keys and extensions in the materials file are errors, not warnings");
-  cmd->add_option("--sheen-visibility", args->visibility, "charlie|ashikhmin (default charlie)");
-  cmd->add_option("--sheen-distribution", args->distribution, "charlie|ashikhmin (default charlie)");
-  cmd->add_option("--sheen-scaling", args->scaling, "min|view|none (default min)");
+  addModelOptions(cmd, args->model);
   cmd->add_option("--device", args->device, "device index or name substring (default $BRDFCL_DEVICE, then 0)");
   cmd->callback([args, cmd] {
-    EvalOptions base;
-    base.sheenVisibility = parseSheenVisibility(args->visibility);
-    base.sheenDistribution = parseSheenDistribution(args->distribution);
-    base.sheenScaling = parseSheenScaling(args->scaling);
+    const EvalOptions base = modelOptions(args->model);
     std::vector<MaterialParams> materials;
     if (args->materials.empty()) {
       for (const char* o : {"--material", "--strict"})
@@ -67,9 +63,13 @@ void addAlbedoCommand(CLI::App& app) {
       perLobe.push_back(directionalAlbedo(ev, materials, mus));
     }
     fmt::print("brdfcl albedo on {} ({})\n", rt.info().name, rt.info().platform);
-    fmt::print("Directional albedo: integral of f(L,V) N.L over the hemisphere of L, as luminance\n"
-               "(Rec. 709 Y of the RGB albedo). Sheen: {} distribution, {} visibility, {} albedo scaling.\n\n",
-               args->distribution, args->visibility, args->scaling);
+    fmt::print("Directional albedo: integral of f(L,V) N.L over the hemisphere of L, as luminance\n");
+    if (base.profile == Profile::Spec)
+      fmt::print("(Rec. 709 Y of the RGB albedo). Sheen: {} distribution, {} visibility, {} albedo scaling.\n\n",
+                 args->model.distribution, args->model.visibility, args->model.scaling);
+    else
+      fmt::print("(Rec. 709 Y of the RGB albedo). Profile {}: {}'s BRDF as docs/profiles.md defines it.\n\n",
+                 toString(base.profile), toString(base.profile));
     for (std::size_t m = 0; m < materials.size(); ++m) {
       fmt::print("{}\n  {:<10}", materials[m].name, "view");
       for (float a : anglesDeg) fmt::print("{:>9}", fmt::format("{:.0f} deg", a));

@@ -8,13 +8,15 @@
 #include "brdfcl/io.hpp"
 #include "brdfcl/stream.hpp"
 #include "commands.hpp"
+#include "model_options.hpp"
 
 namespace brdfcl::cli {
 
 namespace {
 struct EvalArgs {
   std::string materials, samples, out, device;
-  std::string visibility = "charlie", distribution = "charlie", scaling = "min", lobe = "all";
+  ModelArgs model;
+  std::string lobe = "all";
   bool grid = false, strict = false;
   long long chunk = static_cast<long long>(StreamOptions::kDefaultChunk);
 };
@@ -27,10 +29,8 @@ void addEvalCommand(CLI::App& app) {
       ->required();
   cmd->add_option("--samples", args->samples, "CSV with columns material,Lx,Ly,Lz,Vx,Vy,Vz in any order, or .npy (N,7); - reads stdin (CSV, or NPY by its magic)")->required();
   cmd->add_option("--out", args->out, "output CSV r,g,b or .npy (N,3) float32; - writes CSV to stdout")->required();
-  cmd->add_option("--sheen-visibility", args->visibility, "charlie|ashikhmin (default charlie)");
-  cmd->add_option("--sheen-distribution", args->distribution, "charlie|ashikhmin (default charlie)");
-  cmd->add_option("--sheen-scaling", args->scaling, "min|view|none (default min)");
-  cmd->add_option("--lobe", args->lobe, "all|diffuse|specular|sheen|clearcoat (default all)");
+  addModelOptions(cmd, args->model);
+  cmd->add_option("--lobe", args->lobe, "all|diffuse|specular|sheen|clearcoat (default all; every profile defines its lobes, README)");
   cmd->add_flag("--grid", args->grid, "every material x every direction pair, material-major");
   cmd->add_flag("--strict", args->strict,
                 "unknown keys and extensions in the materials file are errors, not warnings");
@@ -40,10 +40,7 @@ void addEvalCommand(CLI::App& app) {
   cmd->add_option("--device", args->device, "device index or name substring (default $BRDFCL_DEVICE, then 0)");
   cmd->callback([args] {
     checkResultsPath("--out", args->out);
-    EvalOptions o;
-    o.sheenVisibility = parseSheenVisibility(args->visibility);
-    o.sheenDistribution = parseSheenDistribution(args->distribution);
-    o.sheenScaling = parseSheenScaling(args->scaling);
+    EvalOptions o = modelOptions(args->model);
     o.lobe = parseLobe(args->lobe);
     if (args->chunk < 1 || args->chunk > static_cast<long long>(StreamOptions::kMaxChunk))
       throw Error("--chunk " + std::to_string(args->chunk) + " is out of range; use 1 to " +

@@ -21,6 +21,10 @@
 #ifndef BRDFCL_LOBE
 #define BRDFCL_LOBE BRDFCL_LOBE_ALL
 #endif
+/* Whose BRDF: the specs (below) or an engine's (brdf/profiles/, docs/profiles.md). */
+#ifndef BRDFCL_PROFILE
+#define BRDFCL_PROFILE BRDFCL_PROFILE_SPEC
+#endif
 /* Feature set of the batch: a layer no material uses is compiled out. */
 #ifndef BRDFCL_HAS_SHEEN
 #define BRDFCL_HAS_SHEEN 1
@@ -47,7 +51,15 @@
   X(sheen_r, sheen_color[0]) X(sheen_g, sheen_color[1]) X(sheen_b, sheen_color[2])    \
   X(sheen_max, sheen_max) X(sheen_alpha, sheen_alpha)                                 \
   X(sheen_roughness, sheen_roughness) X(sheen_weight, sheen_weight)                   \
-  X(clearcoat, clearcoat) X(clearcoat_alpha, clearcoat_alpha)
+  X(clearcoat, clearcoat) X(clearcoat_alpha, clearcoat_alpha)                       \
+  BRDFCL_PROFILE_LANES(X)
+
+/* The fields only engine profiles read: spec's gathers stay as they were. */
+#if BRDFCL_PROFILE == BRDFCL_PROFILE_SPEC
+#define BRDFCL_PROFILE_LANES(X)
+#else
+#define BRDFCL_PROFILE_LANES(X) X(roughness, roughness) X(ior_f0, ior_f0) X(aniso_strength, aniso_strength)
+#endif
 
 #define BRDFCL_DECLARE_LANE(name, field) realw name;
 typedef struct {
@@ -225,11 +237,40 @@ BRDF_FN rgbw layer_clearcoat(rgbw below, realw clearcoat, realw clearcoat_alpha,
   return result;
 }
 
+/* Included here, outside the per-engine branches: the kernel loader inlines each header once, at
+   its first #include, so that first one must not sit in a branch another profile skips. */
+#if BRDFCL_PROFILE != BRDFCL_PROFILE_SPEC
+#include "brdf/profiles/engine_terms.h"
+#endif
+#if BRDFCL_PROFILE == BRDFCL_PROFILE_KHRONOS
+#include "brdf/profiles/khronos.h"
+#elif BRDFCL_PROFILE == BRDFCL_PROFILE_THREEJS
+#include "brdf/profiles/threejs.h"
+#elif BRDFCL_PROFILE == BRDFCL_PROFILE_FILAMENT
+#include "brdf/profiles/filament.h"
+#elif BRDFCL_PROFILE == BRDFCL_PROFILE_BABYLON
+#include "brdf/profiles/babylon.h"
+#elif BRDFCL_PROFILE == BRDFCL_PROFILE_MATERIALX
+#include "brdf/profiles/materialx.h"
+#endif
+
+/* Every layer, f in 1/sr without the cosine; not yet zeroed below the horizon. L, V in the
+   shading frame, Lc, Vc in the clearcoat normal's (the same in batch evaluation). `sheen_e`: the
+   sheen E table; engine profiles find their DFG table right after it. */
+BRDF_FN rgbw brdf_layers(const material_lanes m, vec3w L, vec3w V, vec3w Lc, vec3w Vc,
+                         __global const float* sheen_e, int sheen_e_size) {
+#if BRDFCL_PROFILE == BRDFCL_PROFILE_SPEC
+  return layer_clearcoat(brdf_sheened(m, L, V, sheen_e, sheen_e_size), m.clearcoat, m.clearcoat_alpha, Lc, Vc);
+#else
+  return brdf_profile(m, L, V, Lc, Vc, sheen_e, sheen_e_size);
+#endif
+}
+
 /* The layered material, f(L, V) in 1/sr without the cosine, 0 when N.L <= 0 or N.V <= 0. */
 BRDF_FN rgbw brdf_material(const material_lanes m, vec3w L, vec3w V, __global const float* sheen_e,
                            int sheen_e_size) {
   intw valid = (L.z > 0.0f) & (V.z > 0.0f);
-  rgbw result = layer_clearcoat(brdf_sheened(m, L, V, sheen_e, sheen_e_size), m.clearcoat, m.clearcoat_alpha, L, V);
+  rgbw result = brdf_layers(m, L, V, L, V, sheen_e, sheen_e_size);
   result.r = keep_or_zero(result.r, valid);
   result.g = keep_or_zero(result.g, valid);
   result.b = keep_or_zero(result.b, valid);

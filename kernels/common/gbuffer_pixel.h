@@ -47,6 +47,7 @@ static inline gbuffer_pixel gbuffer_pixel_decode(__global const float* gb, int n
   p.q.sheen_color[0] = GBP(GB_SHEEN_R); p.q.sheen_color[1] = GBP(GB_SHEEN_G); p.q.sheen_color[2] = GBP(GB_SHEEN_B);
   p.q.sheen_roughness = GBP(GB_SHEEN_ROUGHNESS);
   p.q.draft = 0;
+  p.q.ior = 1.5f; /* the G-buffer has no IOR channel: docs/profiles.md */
   p.q.clearcoat = GBP(GB_CLEARCOAT); p.q.clearcoat_roughness = GBP(GB_CLEARCOAT_ROUGHNESS);
   p.q.anisotropy_strength = GBP(GB_ANISO_STRENGTH); p.q.anisotropy_rotation = GBP(GB_ANISO_ROTATION);
 #undef GBP

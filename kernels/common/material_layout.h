@@ -32,7 +32,11 @@ typedef struct brdfcl_material {
   brdfcl_u32 flags;
   float clearcoat;
   float clearcoat_alpha; /* clearcoatRoughness^2, clamped to BRDFCL_MIN_ALPHA */
-  float reserved[6];  /* pads the record to 96 bytes */
+  /* Read by the engine profiles only (docs/profiles.md); spec's kernels never load them. */
+  float roughness;       /* the profile's perceptual base roughness (DFG table coordinate) */
+  float ior_f0;          /* dielectric F0 from KHR_materials_ior, as the profile derives it */
+  float aniso_strength;  /* anisotropyStrength */
+  float reserved[3];     /* pads the record to 96 bytes */
 } brdfcl_material;
 
 /* Clamps, documented in README.md ("Clamps"). Both sit below the alphas of roughness 0.05
@@ -53,5 +57,15 @@ typedef struct brdfcl_material {
 #define BRDFCL_LOBE_SPECULAR 2
 #define BRDFCL_LOBE_SHEEN 3
 #define BRDFCL_LOBE_CLEARCOAT 4
+#define BRDFCL_PROFILE_SPEC 0
+#define BRDFCL_PROFILE_KHRONOS 1
+#define BRDFCL_PROFILE_THREEJS 2
+#define BRDFCL_PROFILE_FILAMENT 3
+#define BRDFCL_PROFILE_BABYLON 4
+#define BRDFCL_PROFILE_MATERIALX 5
+
+/* Engine profiles read, after the sheen E table (size^2 floats), three.js's 16x16 DFG table:
+   (A, B) per texel, row-major, rows = N.V, columns = roughness (docs/profiles.md). */
+#define BRDFCL_DFG_SIZE 16
 
 #endif

@@ -25,6 +25,7 @@ typedef struct brdfcl_material_params {
   int draft;                                 /* 001's draft: sheen_color = colorFactor * intensityFactor */
   float clearcoat, clearcoat_roughness;
   float anisotropy_strength, anisotropy_rotation;
+  float ior;                                 /* KHR_materials_ior; engine profiles only */
 } brdfcl_material_params;
 
 BRDFCL_PACK_FN float brdfcl_max3(const float* c) { return BRDFCL_MAXF(c[0], BRDFCL_MAXF(c[1], c[2])); }
@@ -37,7 +38,10 @@ BRDFCL_PACK_FN brdfcl_material brdfcl_pack_material(brdfcl_material_params m) {
     p.base_color[i] = m.base_color[i];
     p.sheen_color[i] = m.sheen_color[i];
   }
-  for (int i = 0; i < 6; ++i) p.reserved[i] = 0.0f;
+  for (int i = 0; i < 3; ++i) p.reserved[i] = 0.0f;
+  p.roughness = m.roughness;
+  p.ior_f0 = 0.04f;
+  p.aniso_strength = m.anisotropy_strength;
   p.metallic = m.metallic;
   p.alpha = BRDFCL_MAXF(alpha, BRDFCL_MIN_ALPHA);
   p.alpha_t = BRDFCL_MAXF(alpha * (1.0f - s2) + s2, BRDFCL_MIN_ALPHA); /* 002: mix(alpha, 1, strength^2) */
@@ -62,6 +66,78 @@ BRDFCL_PACK_FN brdfcl_material brdfcl_pack_material(brdfcl_material_params m) {
   }
   p.clearcoat = m.clearcoat;
   p.clearcoat_alpha = BRDFCL_MAXF(m.clearcoat_roughness * m.clearcoat_roughness, BRDFCL_MIN_ALPHA);
+  return p;
+}
+
+BRDFCL_PACK_FN float brdfcl_clampf(float x, float lo, float hi) { return BRDFCL_MAXF(lo, x < hi ? x : hi); }
+BRDFCL_PACK_FN float brdfcl_mixf(float a, float b, float t) { return a * (1.0f - t) + b * t; }
+
+/* The same parameters decoded as an engine decodes them (docs/profiles.md): its floors and
+   clamps instead of brdfcl's, its roughness remaps, its F0 from the IOR. No engine reads the
+   draft sheen, so a draft material has none here. */
+BRDFCL_PACK_FN brdfcl_material brdfcl_pack_material_profile(brdfcl_material_params m, int profile) {
+  brdfcl_material p = brdfcl_pack_material(m);
+  if (profile == BRDFCL_PROFILE_SPEC) return p;
+  if (m.draft) {
+    for (int i = 0; i < 3; ++i) p.sheen_color[i] = 0.0f;
+    p.sheen_max = 0.0f;
+    p.sheen_weight = 1.0f;
+    p.sheen_roughness = 0.0f;
+    p.flags = 0u;
+  }
+  const float r = m.roughness, s = m.anisotropy_strength, s2 = s * s;
+  const float rs = m.draft ? 0.0f : m.sheen_roughness, rc = m.clearcoat_roughness;
+  const float ior = m.ior;
+  const float f0_ior = ((ior - 1.0f) / (ior + 1.0f)) * ((ior - 1.0f) / (ior + 1.0f));
+  p.ior_f0 = f0_ior;
+  p.roughness = r;
+  p.sheen_weight = 1.0f;
+  if (profile == BRDFCL_PROFILE_KHRONOS) {
+    const float a = r * r;
+    p.alpha = s > 0.0f ? brdfcl_clampf(a, 0.001f, 1.0f) : a; /* ab: floored on the anisotropic path */
+    p.alpha_t = brdfcl_mixf(a, 1.0f, s2);
+    const float rs1 = BRDFCL_MAXF(rs, 1e-6f);
+    p.sheen_alpha = rs1 * rs1;
+    p.sheen_roughness = rs;
+    p.clearcoat_alpha = rc * rc;
+  } else if (profile == BRDFCL_PROFILE_THREEJS) {
+    const float rho = brdfcl_clampf(r, 0.045f, 1.0f), a = rho * rho;
+    p.roughness = rho;
+    p.alpha = a;
+    p.alpha_t = brdfcl_mixf(a, 1.0f, s2);
+    const float rhos = brdfcl_clampf(rs, 1e-4f, 1.0f);
+    p.sheen_alpha = rhos * rhos;
+    p.sheen_roughness = rhos;
+    const float rhoc = brdfcl_clampf(rc, 0.045f, 1.0f);
+    p.clearcoat_alpha = rhoc * rhoc;
+    p.ior_f0 = f0_ior < 1.0f ? f0_ior : 1.0f;
+  } else if (profile == BRDFCL_PROFILE_FILAMENT) {
+    const float rho = brdfcl_clampf(brdfcl_mixf(r, BRDFCL_MAXF(r, rc), m.clearcoat), 0.045f, 1.0f), a = rho * rho;
+    p.roughness = rho;
+    p.alpha_t = BRDFCL_MAXF(a * (1.0f + s), 0.002025f); /* Kulla 2017, A = strength */
+    p.alpha = BRDFCL_MAXF(a * (1.0f - s), 0.002025f);
+    const float rhos = brdfcl_clampf(rs, 0.045f, 1.0f);
+    p.sheen_alpha = rhos * rhos;
+    p.sheen_roughness = rhos;
+    const float rhoc = brdfcl_clampf(rc, 0.045f, 1.0f);
+    p.clearcoat_alpha = rhoc * rhoc;
+    const float iorf = BRDFCL_MAXF(ior, 1.0f);
+    p.ior_f0 = ((iorf - 1.0f) / (iorf + 1.0f)) * ((iorf - 1.0f) / (iorf + 1.0f));
+  } else if (profile == BRDFCL_PROFILE_BABYLON) {
+    const float ag = r * r + 0.0005f;
+    p.alpha = BRDFCL_MAXF(ag, 0.0005f);
+    p.alpha_t = BRDFCL_MAXF(brdfcl_mixf(ag, 1.0f, s2), 0.0005f);
+    p.sheen_alpha = rs * rs + 0.0005f;
+    p.sheen_roughness = rs;
+    p.clearcoat_alpha = rc * rc + 0.0005f;
+  } else { /* BRDFCL_PROFILE_MATERIALX */
+    const float a = r * r;
+    p.alpha = brdfcl_clampf(a, 1e-5f, 1.0f);
+    p.alpha_t = brdfcl_clampf(brdfcl_mixf(a, 1.0f, s2), 1e-5f, 1.0f);
+    p.sheen_alpha = rs * rs;
+    p.sheen_roughness = rs;
+    p.clearcoat_alpha = brdfcl_clampf(rc * rc, 1e-8f, 1.0f);
+  }
   return p;
 }
 

@@ -13,6 +13,7 @@
 
 #include "brdfcl/error.hpp"
 #include "model/pack.hpp"
+#include "parity/engine_tables.hpp"
 
 namespace brdfcl {
 
@@ -84,7 +85,17 @@ void fillDirectionPlanes(const Samples& s, std::size_t first, std::size_t count,
 }
 }  // namespace
 
-Evaluator::Evaluator(Runtime& rt, EvalOptions options) : rt_(rt), options_(options) {}
+Evaluator::Evaluator(Runtime& rt, EvalOptions options) : rt_(rt), options_(options) {
+  // An engine profile evaluates its engine's sheen; the spec's sheen variants do not apply to it.
+  const EvalOptions defaults;
+  const char* option = options.sheenVisibility != defaults.sheenVisibility       ? "--sheen-visibility"
+                       : options.sheenDistribution != defaults.sheenDistribution ? "--sheen-distribution"
+                       : options.sheenScaling != defaults.sheenScaling           ? "--sheen-scaling"
+                                                                                 : nullptr;
+  if (options.profile != Profile::Spec && option)
+    throw Error(fmt::format("{} applies to --profile spec only; --profile {} uses its engine's own sheen (docs/profiles.md)",
+                            option, toString(options.profile)));
+}
 
 // Baked on first use; the lock makes concurrent first calls bake once and see the finished
 // table (a failed bake leaves table_ empty and the next call tries again). table_ is never
@@ -92,8 +103,8 @@ Evaluator::Evaluator(Runtime& rt, EvalOptions options) : rt_(rt), options_(optio
 const SheenAlbedoTable& Evaluator::sheenAlbedo() {
   std::lock_guard<std::mutex> lock(tableMutex_);
   if (!table_)
-    table_ = std::make_unique<SheenAlbedoTable>(
-        cachedSheenAlbedo(rt_, options_.sheenDistribution, options_.sheenVisibility));
+    table_ = std::make_unique<SheenAlbedoTable>(cachedSheenAlbedo(rt_, sheenTableOptions(options_).sheenDistribution,
+                                                                  sheenTableOptions(options_).sheenVisibility));
   return *table_;
 }
 
@@ -112,11 +123,16 @@ Evaluator::Batch Evaluator::prepare(const std::vector<MaterialParams>& materials
   for (std::size_t i = 0; i < materials.size(); ++i) checkMaterial(materials[i], i);
   const auto features = featuresOf(materials);
   Batch b;
-  for (const auto& m : materials) b.packed.push_back(packMaterial(m));
+  for (const auto& m : materials) b.packed.push_back(packMaterial(m, options_.profile));
   if (features.needsSheenAlbedo(options_)) {
     const SheenAlbedoTable& table = sheenAlbedo();
     b.table = table.values;
     b.tableSize = int(table.width);
+  }
+  // Engine profiles read three.js's DFG table right after the E table (docs/profiles.md).
+  if (options_.profile != Profile::Spec) {
+    const auto& dfg = threejsDfgTable();
+    b.table.insert(b.table.end(), dfg.begin(), dfg.end());
   }
   try {
     b.program = rt_.program("eval.cl", materialDefines(options_, features) + fmt::format(" -DBRDFCL_W={}", kernelWidth()));

@@ -68,9 +68,12 @@ void checkMaterial(const MaterialParams& m, std::size_t index) {
   checkField(m.anisotropyStrength, Domain::Unit, index, "anisotropyStrength");
   checkField(m.anisotropyRotation, Domain::Finite, index, "anisotropyRotation");
   checkColor(m.emissive, Domain::NonNegative, index, "emissive");
+  // KHR_materials_ior's schema: 0 (F0 = 1) or at least 1.
+  if (!(std::isfinite(m.ior) && (m.ior == 0.0f || m.ior >= 1.0f)))
+    throw Error(fmt::format("material {}: ior must be 0 or a number >= 1, got {}", index, floatText(m.ior)));
 }
 
-brdfcl_material packMaterial(const MaterialParams& m) {
+brdfcl_material packMaterial(const MaterialParams& m, Profile profile) {
   brdfcl_material_params q{};
   for (int i = 0; i < 3; ++i) {
     q.base_color[i] = m.baseColor[i];
@@ -84,7 +87,43 @@ brdfcl_material packMaterial(const MaterialParams& m) {
   q.clearcoat_roughness = m.clearcoatRoughness;
   q.anisotropy_strength = m.anisotropyStrength;
   q.anisotropy_rotation = m.anisotropyRotation;
-  return brdfcl_pack_material(q);
+  q.ior = m.ior;
+  return brdfcl_pack_material_profile(q, profileDefine(profile));
+}
+
+int profileDefine(Profile p) {
+  switch (p) {
+    case Profile::Spec: return BRDFCL_PROFILE_SPEC;
+    case Profile::Khronos: return BRDFCL_PROFILE_KHRONOS;
+    case Profile::Threejs: return BRDFCL_PROFILE_THREEJS;
+    case Profile::Filament: return BRDFCL_PROFILE_FILAMENT;
+    case Profile::Babylon: return BRDFCL_PROFILE_BABYLON;
+    case Profile::Materialx: return BRDFCL_PROFILE_MATERIALX;
+  }
+  return BRDFCL_PROFILE_SPEC;
+}
+
+bool FeatureSet::needsSheenAlbedo(const EvalOptions& o) const {
+  switch (o.profile) {
+    case Profile::Spec: return ratifiedSheen && o.sheenScaling != SheenScaling::None;
+    case Profile::Khronos:
+    case Profile::Filament:
+    case Profile::Babylon: return ratifiedSheen;
+    case Profile::Threejs:
+    case Profile::Materialx: return false;  // analytic albedo fits
+  }
+  return false;
+}
+
+EvalOptions sheenTableOptions(const EvalOptions& o) {
+  EvalOptions t = o;
+  if (o.profile == Profile::Spec) return t;
+  t.sheenDistribution = SheenDistribution::Charlie;
+  // Khronos: E of its own lobe (Conty-Kulla V); Filament's DFG.z and Babylon's env-BRDF .b
+  // integrate Charlie D with the Neubelt (Ashikhmin) V.
+  t.sheenVisibility = o.profile == Profile::Khronos ? SheenVisibility::Charlie : SheenVisibility::Ashikhmin;
+  t.sheenScaling = SheenScaling::Min;
+  return t;
 }
 
 FeatureSet featuresOf(const std::vector<MaterialParams>& materials) {
@@ -114,12 +153,18 @@ std::string materialDefines(const EvalOptions& o, const FeatureSet& f) {
   const int scaling = o.sheenScaling == SheenScaling::Min    ? BRDFCL_SCALING_MIN
                       : o.sheenScaling == SheenScaling::View ? BRDFCL_SCALING_VIEW
                                                              : BRDFCL_SCALING_NONE;
+  // No engine reads the draft sheen (docs/profiles.md).
+  const bool spec = o.profile == Profile::Spec;
+  // Spec's options text stays exactly what it was, so its programs (and cache keys) are unchanged.
+  const std::string profile =
+      o.profile == Profile::Spec ? std::string() : fmt::format(" -DBRDFCL_PROFILE={}", profileDefine(o.profile));
   return fmt::format(
       "-DBRDFCL_SHEEN_VIS={} -DBRDFCL_SHEEN_DIST={} -DBRDFCL_SCALING={} -DBRDFCL_LOBE={} -DBRDFCL_HAS_SHEEN={} "
-      "-DBRDFCL_HAS_DRAFT={} -DBRDFCL_HAS_CLEARCOAT={} -DBRDFCL_HAS_ANISOTROPY={}",
+      "-DBRDFCL_HAS_DRAFT={} -DBRDFCL_HAS_CLEARCOAT={} -DBRDFCL_HAS_ANISOTROPY={}{}",
       o.sheenVisibility == SheenVisibility::Ashikhmin ? BRDFCL_SHEEN_VIS_ASHIKHMIN : BRDFCL_SHEEN_VIS_CHARLIE,
       o.sheenDistribution == SheenDistribution::Ashikhmin ? BRDFCL_SHEEN_DIST_ASHIKHMIN : BRDFCL_SHEEN_DIST_CHARLIE,
-      scaling, lobe, int(f.sheen), int(f.draft), int(f.clearcoat), int(f.anisotropy));
+      scaling, lobe, int(spec ? f.sheen : f.ratifiedSheen), int(spec && f.draft), int(f.clearcoat),
+      int(f.anisotropy), profile);
 }
 
 }  // namespace brdfcl

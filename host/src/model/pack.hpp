@@ -10,7 +10,10 @@
 
 namespace brdfcl {
 
-brdfcl_material packMaterial(const MaterialParams& m);
+// Decoded as `profile`'s engine decodes it (docs/profiles.md); Spec is brdfcl's own decode.
+brdfcl_material packMaterial(const MaterialParams& m, Profile profile = Profile::Spec);
+// The BRDFCL_PROFILE_* value of a profile.
+int profileDefine(Profile p);
 
 // Throws brdfcl::Error ("material 3: roughness must be a number in [0, 1], got nan") unless
 // every field lies in the glTF schema domain that readMaterials enforces for files: NaN or an
@@ -20,10 +23,14 @@ void checkMaterial(const MaterialParams& m, std::size_t index);
 // Which layers any material of the batch uses; unused ones are compiled out.
 struct FeatureSet {
   bool sheen = false, draft = false, clearcoat = false, anisotropy = false;
-  bool needsSheenAlbedo(const EvalOptions& o) const { return ratifiedSheen && o.sheenScaling != SheenScaling::None; }
+  bool needsSheenAlbedo(const EvalOptions& o) const;
   bool ratifiedSheen = false;
 };
 FeatureSet featuresOf(const std::vector<MaterialParams>& materials);
+
+// The options whose sheen E table a batch reads: the user's under Spec; under an engine profile
+// the table that engine's sheen scaling uses (docs/profiles.md "Tables"). Lobe and profile kept.
+EvalOptions sheenTableOptions(const EvalOptions& o);
 
 // The -D options for kernels/brdf/material.h.
 std::string materialDefines(const EvalOptions& o, const FeatureSet& f);

@@ -1,0 +1,67 @@
+/* --profile filament: Filament's standard model, desktop quality (surface_brdf.fs@04d50d42,
+   surface_shading_model_standard.fs@1b47d187), docs/profiles.md "filament": base roughness raised
+   by the coat, f90 from f0, Lambert without Fresnel, energy compensation, view-only sheen scaling,
+   Kelemen coat with F on L.H, Kulla anisotropy. saturateMediump caps D and V at 65504. */
+#ifndef BRDFCL_PROFILE_FILAMENT_H
+#define BRDFCL_PROFILE_FILAMENT_H
+
+#include "brdf/profiles/engine_terms.h"
+
+#define BRDFCL_MEDIUMP_MAX 65504.0f
+
+BRDF_FN realw D_GGX_Filament(realw sin2, realw cos2, realw alpha) {
+  realw k = alpha / (sin2 + cos2 * alpha * alpha);
+  return min(k * k * M_1_PI_F, BRDFCL_MEDIUMP_MAX);
+}
+
+BRDF_FN rgbw brdf_profile(const material_lanes m, vec3w L, vec3w V, vec3w Lc, vec3w Vc,
+                          __global const float* tables, int e_size) {
+  __global const float* dfg = tables + e_size * e_size;
+  engine_geometry g = engine_geometry_of(L, V);
+#if BRDFCL_HAS_ANISOTROPY
+  /* alpha_t = alpha (1 + A), alpha = alpha (1 - A): equal at A = 0, the isotropic lobe. */
+  realw c = m.aniso_cos, s = m.aniso_sin;
+  realw S = min(D_Burley(along_t(g.hx, g.hy, c, s), along_b(g.hx, g.hy, c, s), g.hz, m.alpha_t, m.alpha), BRDFCL_MEDIUMP_MAX) *
+            min(0.5f / Lambda_HeitzSum(g.NdotL, g.NdotV, along_t(V.x, V.y, c, s), along_b(V.x, V.y, c, s),
+                                       along_t(L.x, L.y, c, s), along_b(L.x, L.y, c, s), m.alpha_t, m.alpha),
+                BRDFCL_MEDIUMP_MAX);
+#else
+  realw S = D_GGX_Filament(g.sin2, g.cos2, m.alpha) *
+            min(0.5f / Lambda_SmithSum(g.NdotL, g.NdotV, m.alpha), BRDFCL_MEDIUMP_MAX);
+#endif
+  realw f0r = mix(m.ior_f0, m.base_r, m.metallic), f0g = mix(m.ior_f0, m.base_g, m.metallic),
+        f0b = mix(m.ior_f0, m.base_b, m.metallic);
+  realw f90 = clamp(16.5f * (f0r + f0g + f0b), 0.0f, 1.0f);
+  realw ec_k = 1.0f / Ess_ThreeJs(dfg, m.roughness, g.NdotV) - 1.0f;
+  rgbw specular = {F_Schlick90(f0r, f90, g.s5) * S * (1.0f + f0r * ec_k), F_Schlick90(f0g, f90, g.s5) * S * (1.0f + f0g * ec_k),
+                   F_Schlick90(f0b, f90, g.s5) * S * (1.0f + f0b * ec_k)};
+  realw kd = (1.0f - m.metallic) * M_1_PI_F;
+  rgbw diffuse = {kd * m.base_r, kd * m.base_g, kd * m.base_b};
+  rgbw sheen = rgbw_splat(0.0f);
+#if BRDFCL_HAS_SHEEN
+  {
+    realw dv = D_CharlieFloored(g.sin2, g.cos2, m.sheen_alpha) * V_Ashikhmin(g.NdotL, g.NdotV);
+    sheen.r = m.sheen_r * dv;
+    sheen.g = m.sheen_g * dv;
+    sheen.b = m.sheen_b * dv;
+    realw sh = 1.0f - m.sheen_max * E_SheenAlbedo(tables, e_size, E_SheenAlbedoRow(e_size, m.sheen_roughness), g.NdotV);
+    diffuse = rgbw_scale(diffuse, sh);
+    specular = rgbw_scale(specular, sh);
+  }
+#endif
+  realw coat = 0.0f;
+#if BRDFCL_HAS_CLEARCOAT
+  {
+    engine_geometry gc = engine_geometry_of(Lc, Vc);
+    realw Fcc = m.clearcoat * F_Schlick90(0.04f, 1.0f, gc.s5);
+    realw k = 1.0f - Fcc;
+    diffuse = rgbw_scale(diffuse, k);
+    specular = rgbw_scale(specular, k);
+    sheen = rgbw_scale(sheen, k);
+    coat = Fcc * D_GGX_Filament(gc.sin2, gc.cos2, m.clearcoat_alpha) * min(V_Kelemen(gc.VdotH), BRDFCL_MEDIUMP_MAX);
+  }
+#endif
+  return select_lobe(diffuse, specular, sheen, coat);
+}
+
+#endif

@@ -1,0 +1,62 @@
+/* --profile khronos: the glTF Sample Renderer's punctual BRDF (pbr.frag@9dfbb82b, brdf.glsl as in
+   glTF-Sample-Viewer@d0b428c8), docs/profiles.md "khronos". No alpha floors (alpha = 0 at N.H = 1
+   is NaN, as there), F0 from the IOR for base and coat, sheen V clamped to 1. */
+#ifndef BRDFCL_PROFILE_KHRONOS_H
+#define BRDFCL_PROFILE_KHRONOS_H
+
+#include "brdf/profiles/engine_terms.h"
+
+BRDF_FN rgbw brdf_profile(const material_lanes m, vec3w L, vec3w V, vec3w Lc, vec3w Vc,
+                          __global const float* tables, int e_size) {
+  engine_geometry g = engine_geometry_of(L, V);
+  realw S = D_GGX_HalfAngle(g.sin2, g.cos2, m.alpha) * 0.5f / Lambda_SmithSum(g.NdotL, g.NdotV, m.alpha);
+#if BRDFCL_HAS_ANISOTROPY
+  {
+    /* BRDF_specularGGXAnisotropy: ab floored at 0.001 (packed), N.H clamped to [0.001, 1], V <= 1. */
+    realw c = m.aniso_cos, s = m.aniso_sin;
+    realw hn = clamp(g.hz, 0.001f, 1.0f);
+    realw D = D_Burley(along_t(g.hx, g.hy, c, s), along_b(g.hx, g.hy, c, s), hn, m.alpha_t, m.alpha);
+    realw Va = 0.5f / Lambda_HeitzSum(g.NdotL, g.NdotV, along_t(V.x, V.y, c, s), along_b(V.x, V.y, c, s),
+                                      along_t(L.x, L.y, c, s), along_b(L.x, L.y, c, s), m.alpha_t, m.alpha);
+    S = select(S, D * min(Va, 1.0f), m.aniso_strength > 0.0f);
+  }
+#endif
+  realw Fd = F_Schlick90(m.ior_f0, 1.0f, g.s5);
+  realw kd = (1.0f - m.metallic) * (1.0f - Fd) * M_1_PI_F;
+  realw ks = (1.0f - m.metallic) * Fd;
+  rgbw diffuse = {kd * m.base_r, kd * m.base_g, kd * m.base_b};
+  rgbw specular = {(ks + m.metallic * F_Schlick90(m.base_r, 1.0f, g.s5)) * S,
+                   (ks + m.metallic * F_Schlick90(m.base_g, 1.0f, g.s5)) * S,
+                   (ks + m.metallic * F_Schlick90(m.base_b, 1.0f, g.s5)) * S};
+  rgbw sheen = rgbw_splat(0.0f);
+#if BRDFCL_HAS_SHEEN
+  {
+    realw dv = D_Charlie(g.sin2, g.cos2, m.sheen_alpha) * min(V_Charlie(g.NdotL, g.NdotV, m.sheen_alpha), 1.0f);
+    sheen.r = m.sheen_r * dv;
+    sheen.g = m.sheen_g * dv;
+    sheen.b = m.sheen_b * dv;
+    sheen_albedo_row row = E_SheenAlbedoRow(e_size, m.sheen_roughness);
+    realw sh = min(1.0f - m.sheen_max * E_SheenAlbedo(tables, e_size, row, g.NdotV),
+                   1.0f - m.sheen_max * E_SheenAlbedo(tables, e_size, row, g.NdotL));
+    diffuse = rgbw_scale(diffuse, sh);
+    specular = rgbw_scale(specular, sh);
+  }
+#endif
+  realw coat = 0.0f;
+#if BRDFCL_HAS_CLEARCOAT
+  {
+    engine_geometry gc = engine_geometry_of(Lc, Vc);
+    realw Fc = F_Schlick90(m.ior_f0, 1.0f, pow5w(1.0f - Vc.z));
+    realw C = D_GGX_HalfAngle(gc.sin2, gc.cos2, m.clearcoat_alpha) * 0.5f /
+              Lambda_SmithSum(gc.NdotL, gc.NdotV, m.clearcoat_alpha);
+    realw k = 1.0f - m.clearcoat * Fc;
+    diffuse = rgbw_scale(diffuse, k);
+    specular = rgbw_scale(specular, k);
+    sheen = rgbw_scale(sheen, k);
+    coat = m.clearcoat * Fc * C;
+  }
+#endif
+  return select_lobe(diffuse, specular, sheen, coat);
+}
+
+#endif

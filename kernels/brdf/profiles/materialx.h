@@ -1,0 +1,70 @@
+/* --profile materialx: MaterialX gltf_pbr (1.39, nodedef 2.0.1, HEAD 4177b2cb), docs/profiles.md
+   "materialx": layers by directional-albedo throughput, GGX energy compensation from the analytic
+   albedo fit, isotropic Smith on sqrt(alpha_t alpha_b), exact dielectric Fresnel on the coat. */
+#ifndef BRDFCL_PROFILE_MATERIALX_H
+#define BRDFCL_PROFILE_MATERIALX_H
+
+#include "brdf/profiles/engine_terms.h"
+
+/* mx_ggx_energy_compensation: 1 + F (1 - E) / E with E = A + B of the fit. */
+BRDF_FN realw comp_MaterialX(realw F, realw E) { return 1.0f + F * (1.0f - E) / E; }
+
+BRDF_FN rgbw brdf_profile(const material_lanes m, vec3w L, vec3w V, vec3w Lc, vec3w Vc,
+                          __global const float* tables, int e_size) {
+  engine_geometry g = engine_geometry_of(L, V);
+#if BRDFCL_HAS_ANISOTROPY
+  realw c = m.aniso_cos, s = m.aniso_sin;
+  realw D = D_Burley(along_t(g.hx, g.hy, c, s), along_b(g.hx, g.hy, c, s), g.hz, m.alpha_t, m.alpha);
+  realw avg = sqrt(m.alpha_t * m.alpha);
+#else
+  realw D = D_GGX_HalfAngle(g.sin2, g.cos2, m.alpha);
+  realw avg = m.alpha;
+#endif
+  realw DV = D * 0.5f / Lambda_SmithSum(g.NdotL, g.NdotV, avg);
+  realw A, B;
+  DFG_MaterialXFit(g.NdotV, avg, &A, &B);
+  realw E = A + B;
+  realw f0 = m.ior_f0;
+  realw Fd = F_Schlick90(f0, 1.0f, g.s5);
+  realw comp_d = comp_MaterialX(Fd, E);
+  realw spec_d = DV * Fd * comp_d;
+  realw t_d = 1.0f - (f0 * A + B) * comp_d;
+  realw Fr = F_Schlick90(m.base_r, 1.0f, g.s5), Fg = F_Schlick90(m.base_g, 1.0f, g.s5), Fb = F_Schlick90(m.base_b, 1.0f, g.s5);
+  realw dw = 1.0f - m.metallic;
+  rgbw specular = {dw * spec_d + m.metallic * DV * Fr * comp_MaterialX(Fr, E),
+                   dw * spec_d + m.metallic * DV * Fg * comp_MaterialX(Fg, E),
+                   dw * spec_d + m.metallic * DV * Fb * comp_MaterialX(Fb, E)};
+  realw kd = dw * t_d * M_1_PI_F;
+  rgbw diffuse = {kd * m.base_r, kd * m.base_g, kd * m.base_b};
+  rgbw sheen = rgbw_splat(0.0f);
+#if BRDFCL_HAS_SHEEN
+  {
+    realw dv = D_Charlie(g.sin2, g.cos2, max(m.sheen_alpha, 0.005f)) * V_Ashikhmin(g.NdotL, g.NdotV);
+    sheen.r = m.sheen_r * dv;
+    sheen.g = m.sheen_g * dv;
+    sheen.b = m.sheen_b * dv;
+    realw t_s = 1.0f - m.sheen_max * E_SheenMaterialX(g.NdotV, m.sheen_alpha);
+    diffuse = rgbw_scale(diffuse, t_s);
+    specular = rgbw_scale(specular, t_s);
+  }
+#endif
+  realw coat = 0.0f;
+#if BRDFCL_HAS_CLEARCOAT
+  {
+    engine_geometry gc = engine_geometry_of(Lc, Vc);
+    realw Ac, Bc;
+    DFG_MaterialXFit(gc.NdotV, m.clearcoat_alpha, &Ac, &Bc);
+    realw Fc = F_Dielectric(gc.VdotH, 1.5f);
+    realw comp_c = comp_MaterialX(Fc, Ac + Bc);
+    realw t_c = 1.0f - m.clearcoat * (0.04f * Ac + Bc) * comp_c;
+    diffuse = rgbw_scale(diffuse, t_c);
+    specular = rgbw_scale(specular, t_c);
+    sheen = rgbw_scale(sheen, t_c);
+    coat = m.clearcoat * D_GGX_HalfAngle(gc.sin2, gc.cos2, m.clearcoat_alpha) * 0.5f /
+           Lambda_SmithSum(gc.NdotL, gc.NdotV, m.clearcoat_alpha) * Fc * comp_c;
+  }
+#endif
+  return select_lobe(diffuse, specular, sheen, coat);
+}
+
+#endif

@@ -1,0 +1,59 @@
+/* --profile threejs: three.js's WebGPU (TSL) PhysicalLightingModel@011d3c8d, docs/profiles.md
+   "threejs": spherical-Gaussian Fresnel, roughness floor 0.045, direct multiscatter from its DFG
+   table, Neubelt sheen with its analytic albedo, F(V.H) inside the coat, sheen above the coat. */
+#ifndef BRDFCL_PROFILE_THREEJS_H
+#define BRDFCL_PROFILE_THREEJS_H
+
+#include "brdf/profiles/engine_terms.h"
+
+BRDF_FN rgbw brdf_profile(const material_lanes m, vec3w L, vec3w V, vec3w Lc, vec3w Vc,
+                          __global const float* tables, int e_size) {
+  __global const float* dfg = tables + e_size * e_size;
+  engine_geometry g = engine_geometry_of(L, V);
+#if BRDFCL_HAS_ANISOTROPY
+  /* With strength 0 (alpha_t = alpha) this is the isotropic lobe. */
+  realw c = m.aniso_cos, s = m.aniso_sin;
+  realw S = D_Burley(along_t(g.hx, g.hy, c, s), along_b(g.hx, g.hy, c, s), g.hz, m.alpha_t, m.alpha) * 0.5f /
+            max(Lambda_HeitzSum(g.NdotL, g.NdotV, along_t(V.x, V.y, c, s), along_b(V.x, V.y, c, s),
+                                along_t(L.x, L.y, c, s), along_b(L.x, L.y, c, s), m.alpha_t, m.alpha), 1e-6f);
+#else
+  realw S = D_GGX_HalfAngle(g.sin2, g.cos2, m.alpha) * 0.5f / max(Lambda_SmithSum(g.NdotL, g.NdotV, m.alpha), 1e-6f);
+#endif
+  realw fs = Fs_SphericalGaussian(g.VdotH);
+  realw f0d = m.ior_f0;
+  realw ms_k = 1.0f / Ess_ThreeJs(dfg, m.roughness, g.NdotV) - 1.0f;
+  realw f0r = mix(f0d, m.base_r, m.metallic), f0g = mix(f0d, m.base_g, m.metallic), f0b = mix(f0d, m.base_b, m.metallic);
+  rgbw specular = {F_SchlickSG(f0r, 1.0f, fs) * S * (1.0f + f0r * ms_k), F_SchlickSG(f0g, 1.0f, fs) * S * (1.0f + f0g * ms_k),
+                   F_SchlickSG(f0b, 1.0f, fs) * S * (1.0f + f0b * ms_k)};
+  realw kd = (1.0f - m.metallic) * (1.0f - F_SchlickSG(f0d, 1.0f, fs)) * M_1_PI_F;
+  rgbw diffuse = {kd * m.base_r, kd * m.base_g, kd * m.base_b};
+  rgbw sheen = rgbw_splat(0.0f);
+#if BRDFCL_HAS_SHEEN
+  {
+    realw dv = D_CharlieFloored(g.sin2, g.cos2, m.sheen_alpha) * min(V_Ashikhmin(g.NdotL, g.NdotV), 1.0f);
+    sheen.r = m.sheen_r * dv;
+    sheen.g = m.sheen_g * dv;
+    sheen.b = m.sheen_b * dv;
+    realw sh = 1.0f - m.sheen_max * max(E_SheenThreeJs(g.NdotV, m.sheen_roughness), E_SheenThreeJs(g.NdotL, m.sheen_roughness));
+    diffuse = rgbw_scale(diffuse, sh);
+    specular = rgbw_scale(specular, sh);
+  }
+#endif
+  realw coat = 0.0f;
+#if BRDFCL_HAS_CLEARCOAT
+  {
+    engine_geometry gc = engine_geometry_of(Lc, Vc);
+    realw Fcc = F_SchlickSG(0.04f, 1.0f, Fs_SphericalGaussian(Vc.z));
+    realw C = F_SchlickSG(0.04f, 1.0f, Fs_SphericalGaussian(gc.VdotH)) *
+              D_GGX_HalfAngle(gc.sin2, gc.cos2, m.clearcoat_alpha) * 0.5f /
+              max(Lambda_SmithSum(gc.NdotL, gc.NdotV, m.clearcoat_alpha), 1e-6f);
+    realw k = 1.0f - m.clearcoat * Fcc;
+    diffuse = rgbw_scale(diffuse, k);
+    specular = rgbw_scale(specular, k);
+    coat = m.clearcoat * C; /* TSL finish(): the sheen is added after this, unattenuated */
+  }
+#endif
+  return select_lobe(diffuse, specular, sheen, coat);
+}
+
+#endif
