@@ -1,13 +1,16 @@
 /* Deferred shading of a G-buffer: per pixel, decode the material once (common/material_pack.h),
-   add every punctual light through the batch evaluator's own layers (brdf_sheened, then
-   layer_clearcoat on the clearcoat normal), then split-sum image-based light (times the glTF
-   occlusion) and the clearcoat-darkened emission. Masked-out pixels show the environment. The view
+   add every punctual light through the batch evaluator's own layers (brdf_layers, the clearcoat
+   on its own normal), then split-sum image-based light (times the glTF occlusion; an engine
+   profile's own approximation under -DBRDFCL_PROFILE) and the clearcoat-darkened emission. Masked-out pixels show the environment. The view
    is the G-buffer's V where it has one, else the camera's (pinhole or orthographic). */
 #define BRDFCL_W 1
 #include "brdf/material.h"
 #include "common/material_pack.h"
 #include "common/environment.h"
 #include "common/gbuffer_pixel.h"
+#if BRDFCL_PROFILE != BRDFCL_PROFILE_SPEC
+#include "brdf/profiles/ibl.h"
+#endif
 
 typedef struct {
   __global const float* chain; int w0, h0, levels;
@@ -94,7 +97,7 @@ __kernel void shade(__global const float* restrict gb, int width, int height, in
     gbuffer_pixel px = gbuffer_pixel_decode(gb, np, i, Vg, eye, forward, ortho);
     float3 P = px.P, N = px.N, T = px.T, B = px.B, Nc = px.Nc, Tc = px.Tc, Bc = px.Bc, V = px.V;
     brdfcl_material_params q = px.q;
-    brdfcl_material packed = brdfcl_pack_material(q);
+    brdfcl_material packed = brdfcl_pack_material_profile(q, BRDFCL_PROFILE);
     material_lanes m = material_splat_private(&packed);
 
     vec3w Vl = to_lanes(frame_local(V, T, B, N)), Vc = to_lanes(frame_local(V, Tc, Bc, Nc));
@@ -125,13 +128,15 @@ __kernel void shade(__global const float* restrict gb, int width, int height, in
       }
       float NdotL = dot(N, L);
       if (NdotL <= 0.0f || NdotV <= 0.0f) continue;
-      rgbw f = brdf_sheened(m, to_lanes(frame_local(L, T, B, N)), Vl, sheen_e, sheen_e_size);
-      f = layer_clearcoat(f, m.clearcoat, m.clearcoat_alpha, to_lanes(frame_local(L, Tc, Bc, Nc)), Vc);
+      rgbw f = brdf_layers(m, to_lanes(frame_local(L, T, B, N)), Vl, to_lanes(frame_local(L, Tc, Bc, Nc)), Vc, sheen_e,
+                           sheen_e_size);
       result += (float3)(f.r, f.g, f.b) * NdotL * radiance;
     }
 
+#if BRDFCL_PROFILE == BRDFCL_PROFILE_SPEC
     float ncv = max(dot(Nc, V), 1e-4f);
     float coat = q.clearcoat * (0.04f + 0.96f * pow5w(1.0f - ncv));
+    float emission_weight = 1.0f - coat;
     /* Under --ibl exact the image-based light comes from kernels/ibl_exact.cl instead. */
     float3 ibl = (float3)(0.0f);
     if (split_sum) {
@@ -185,10 +190,23 @@ __kernel void shade(__global const float* restrict gb, int width, int height, in
         ibl = (1.0f - coat) * ibl + coat * coat_light * (abc.x + abc.y);
       }
     }
+#else
+    /* The engine's own image-based light (brdf/profiles/ibl.h); its coat sets the emission weight.
+       (--ibl exact evaluates the spec only: the host refuses it with a profile.) */
+    float3 ibl = (float3)(0.0f);
+    float emission_weight = 1.0f;
+    if (split_sum) {
+      profile_ibl_env e = {ggx_chain, charlie_chain, irradiance, env_w, env_h, charlie_w, charlie_h, prefilter_levels,
+                           irr_w, irr_h, env_rotation, dfg, dfg_size, sheen_e, sheen_e_size};
+      float3 Ta = normalize(cos(q.anisotropy_rotation) * T + sin(q.anisotropy_rotation) * B);
+      profile_ibl_frame frame = {N, V, Nc, Ta, cross(N, Ta)};
+      ibl = profile_ibl(&e, &frame, q, &packed, &emission_weight);
+    }
+#endif
     /* glTF occlusion dims indirect light only: punctual lights and emission are not touched. */
     result += ibl * clamp(GB(GB_OCCLUSION), 0.0f, 1.0f);
     /* 004 "Emission": the coat darkens what is below it. */
-    result += (float3)(GB(GB_EMISSIVE_R), GB(GB_EMISSIVE_G), GB(GB_EMISSIVE_B)) * (1.0f - coat);
+    result += (float3)(GB(GB_EMISSIVE_R), GB(GB_EMISSIVE_G), GB(GB_EMISSIVE_B)) * emission_weight;
   }
   out[i] = result.x;
   out[np + i] = result.y;

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -18,6 +19,7 @@
 #include "brdfcl/gltf.hpp"
 #include "brdfcl/gltf_frame.hpp"
 #include "brdfcl/image.hpp"
+#include "brdfcl/image_diff.hpp"
 #include "brdfcl/io.hpp"
 #include "brdfcl/render.hpp"
 #include "commands.hpp"
@@ -182,10 +184,35 @@ struct LightingArgs {
   }
 };
 
+// --profile and --diff-against of render (shade takes --profile only).
+struct ProfileArgs {
+  std::string profile = "spec", against;
+
+  void add(CLI::App* cmd, bool diff) {
+    cmd->add_option("--profile", profile,
+                    "spec|khronos|threejs|filament|babylon|materialx: whose BRDF and image-based light (default spec; "
+                    "docs/profiles.md)");
+    if (diff)
+      cmd->add_option("--diff-against", against,
+                      "also render under this profile; --out is then the picture of the relative luminance difference "
+                      "(profile - this) / this, and the statistics are printed");
+  }
+  EvalOptions options() const {
+    EvalOptions o;
+    o.profile = parseProfile(profile);
+    return o;
+  }
+  EvalOptions againstOptions() const {
+    EvalOptions o;
+    o.profile = parseProfile(against);
+    return o;
+  }
+};
+
 Image renderGltf(Runtime& rt, const LoadedAsset& l, const Scene& lighting, int spp, const std::string& gbufferOut,
-                 const ShadeOptions& shadeOptions = {}) {
+                 const ShadeOptions& shadeOptions = {}, const EvalOptions& model = {}) {
   gltf::Raycaster raycaster(l.asset);
-  Shader shader(rt, lighting);
+  Shader shader(rt, lighting, model);
   ShadeStats stats;
   const Image img = gltf::renderFrame(shader, raycaster, l.view, l.width, l.height, spp, progressLine("brdfcl render", "sample"),
                                       shadeOptions, &stats);
@@ -233,6 +260,7 @@ void addRenderCommands(CLI::App& app) {
       float exposure = 0.0f;
       bool noCheck = false;
       IblArgs ibl;
+      ProfileArgs profile;
     };
     auto a = std::make_shared<Args>();
     auto* cmd = app.add_subcommand("shade", "Shade a G-buffer EXR under a scene's lights and environment");
@@ -245,6 +273,7 @@ void addRenderCommands(CLI::App& app) {
     cmd->add_option("--device", a->device, "device index or name substring");
     cmd->add_flag("--no-check", a->noCheck, "skip the G-buffer's range checks (factors in [0, 1], unit normals)");
     a->ibl.add(cmd);
+    a->profile.add(cmd, false);
     cmd->callback([a, cmd] {
       std::string exr = a->exr, png = a->png;
       if (lowerExtension(a->out) == ".png" && !detail::isStreamTarget(a->out)) {
@@ -262,6 +291,10 @@ void addRenderCommands(CLI::App& app) {
       checkOutput("--exr", a->exr, ".exr");
       checkExposure(a->exposure);
       const ShadeOptions shadeOptions = a->ibl.check(cmd, "brdfcl shade");
+      const EvalOptions model = a->profile.options();
+      if (shadeOptions.ibl == IblMode::Exact && model.profile != Profile::Spec)
+        throw Error("--ibl exact integrates the spec's BRDF only; --profile " + a->profile.profile +
+                    " reproduces its engine's own image-based light, so use --ibl split-sum with it");
       GBufferReadOptions readOptions;
       readOptions.check = !a->noCheck;
       const GBuffer g = readGBuffer(a->gbuffer, readOptions);
@@ -270,7 +303,7 @@ void addRenderCommands(CLI::App& app) {
         printWarning(w);
       checkFrameFits(FrameJob::Shade, g.width, g.height, usableHostMemory(), a->gbuffer);
       Runtime rt(a->device);
-      Shader shader(rt, scene);
+      Shader shader(rt, scene, model);
       writeImages(shadeWith(shader, g, shadeOptions), exr, png, a->exposure);
     });
   }
@@ -282,6 +315,7 @@ void addRenderCommands(CLI::App& app) {
       GltfArgs gltf;
       LightingArgs lighting;
       IblArgs ibl;
+      ProfileArgs profile;
     };
     auto a = std::make_shared<Args>();
     auto* cmd = app.add_subcommand("render", "Render a glTF asset or a built-in scene (G-buffer + shading) to PNG (and EXR)");
@@ -291,14 +325,24 @@ void addRenderCommands(CLI::App& app) {
     cmd->add_option("--spp", a->spp, "stratified sub-pixel samples per pixel, glTF only (default 4)");
     a->lighting.add(cmd);
     a->ibl.add(cmd);
+    a->profile.add(cmd, true);
     cmd->add_option("--exposure", a->exposure, "exposure in stops (default 0)");
-    cmd->add_option("--out", a->out, "output tone-mapped .png, or linear radiance .exr")->required();
+    cmd->add_option("--out", a->out, "output tone-mapped .png, or linear radiance .exr (with --diff-against: the difference picture, .png)")->required();
     cmd->add_option("--exr", a->exr, "also the linear radiance as .exr");
     cmd->add_option("--gbuffer", a->gbuffer, "also the pixel-centre G-buffer as .exr");
     cmd->add_option("--device", a->device, "device index or name substring");
     cmd->callback([a, cmd] {
+      const EvalOptions model = a->profile.options();
+      const bool diff = cmd->count("--diff-against") > 0;
+      const EvalOptions against = diff ? a->profile.againstOptions() : EvalOptions{};
+      if (diff && lowerExtension(a->out) != ".png" && !detail::isStreamTarget(a->out))
+        throw Error(fmt::format("--out '{}': with --diff-against it is the difference picture, a .png; keep the render "
+                                "with --exr FILE.exr",
+                                a->out));
       std::string png = a->out, exr = a->exr;
-      if (lowerExtension(a->out) == ".exr" && !detail::isStreamTarget(a->out)) {
+      if (diff) {
+        // The picture is --out; --exr keeps the --profile render.
+      } else if (lowerExtension(a->out) == ".exr" && !detail::isStreamTarget(a->out)) {
         if (!exr.empty()) throw Error("--out is already the EXR; drop --exr, or give --out FILE.png");
         exr = a->out;
         png.clear();
@@ -312,7 +356,23 @@ void addRenderCommands(CLI::App& app) {
       checkExposure(a->exposure);
       checkSpp(a->spp);
       const ShadeOptions shadeOptions = a->ibl.check(cmd, "brdfcl render");
+      if (shadeOptions.ibl == IblMode::Exact && (model.profile != Profile::Spec || against.profile != Profile::Spec))
+        throw Error("--ibl exact integrates the spec's BRDF only; an engine profile reproduces its engine's own "
+                    "image-based light, so use --ibl split-sum with --profile and --diff-against");
       const Environment environment = a->lighting.environmentChoice(cmd);
+      // Under --diff-against: render both, write the --profile render to --exr, picture the difference.
+      auto finish = [&](const Image& img, const std::function<Image()>& renderAgainst) {
+        if (!diff) {
+          writeImages(img, exr, png, a->exposure);
+          return;
+        }
+        const Image other = renderAgainst();
+        if (!exr.empty()) writeImages(img, exr, "", a->exposure);
+        const std::string nameA = "--profile " + a->profile.profile, nameB = "--profile " + a->profile.against;
+        const ImageDiff d = diffImages(img.rgb, other.rgb, img.width, img.height);
+        writeImageDiffPng(a->out, d, nameA, nameB, defaultDiffRange(d.stats));
+        std::fputs(formatImageDiff(d.stats, nameA, nameB).c_str(), detail::isStreamTarget(a->out) ? stderr : stdout);
+      };
       if (!a->gltf.path.empty()) {
         if (cmd->count("--scene")) throw Error("--scene and --gltf are alternatives; give one");
         const LoadedAsset l = loadAsset(a->gltf);
@@ -320,7 +380,8 @@ void addRenderCommands(CLI::App& app) {
             gltf::frameLighting(l.asset, l.view, a->lighting.lights, environment, a->lighting.environmentGiven);
         checkFrameFits(FrameJob::Render, l.width, l.height, usableHostMemory());
         Runtime rt(a->device);
-        writeImages(renderGltf(rt, l, lighting, a->spp, a->gbuffer, shadeOptions), exr, png, a->exposure);
+        finish(renderGltf(rt, l, lighting, a->spp, a->gbuffer, shadeOptions, model),
+               [&] { return renderGltf(rt, l, lighting, a->spp, "", shadeOptions, against); });
         return;
       }
       a->gltf.checkBuiltin(cmd);
@@ -334,8 +395,11 @@ void addRenderCommands(CLI::App& app) {
       Runtime rt(a->device);
       const GBuffer g = renderSpheresGBuffer(rt, scene, w, h);
       if (!a->gbuffer.empty()) writeGBuffer(a->gbuffer, g);
-      Shader shader(rt, scene);
-      writeImages(shadeWith(shader, g, shadeOptions), exr, png, a->exposure);
+      Shader shader(rt, scene, model);
+      finish(shadeWith(shader, g, shadeOptions), [&] {
+        Shader other(rt, scene, against);
+        return shadeWith(other, g, shadeOptions);
+      });
     });
   }
   {

@@ -1,6 +1,8 @@
 // --profile and the sheen variants, parsed into EvalOptions (docs/profiles.md for the profiles).
 #include "model_options.hpp"
 
+#include "host/src/model/pack.hpp"
+
 namespace brdfcl::cli {
 
 void addModelOptions(CLI::App* cmd, ModelArgs& args) {
@@ -17,6 +19,7 @@ EvalOptions modelOptions(const ModelArgs& args) {
   o.sheenVisibility = parseSheenVisibility(args.visibility);
   o.sheenDistribution = parseSheenDistribution(args.distribution);
   o.sheenScaling = parseSheenScaling(args.scaling);
+  checkProfileOptions(o);  // before any file is read
   return o;
 }
 

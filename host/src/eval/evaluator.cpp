@@ -85,17 +85,7 @@ void fillDirectionPlanes(const Samples& s, std::size_t first, std::size_t count,
 }
 }  // namespace
 
-Evaluator::Evaluator(Runtime& rt, EvalOptions options) : rt_(rt), options_(options) {
-  // An engine profile evaluates its engine's sheen; the spec's sheen variants do not apply to it.
-  const EvalOptions defaults;
-  const char* option = options.sheenVisibility != defaults.sheenVisibility       ? "--sheen-visibility"
-                       : options.sheenDistribution != defaults.sheenDistribution ? "--sheen-distribution"
-                       : options.sheenScaling != defaults.sheenScaling           ? "--sheen-scaling"
-                                                                                 : nullptr;
-  if (options.profile != Profile::Spec && option)
-    throw Error(fmt::format("{} applies to --profile spec only; --profile {} uses its engine's own sheen (docs/profiles.md)",
-                            option, toString(options.profile)));
-}
+Evaluator::Evaluator(Runtime& rt, EvalOptions options) : rt_(rt), options_(options) { checkProfileOptions(options); }
 
 // Baked on first use; the lock makes concurrent first calls bake once and see the finished
 // table (a failed bake leaves table_ empty and the next call tries again). table_ is never

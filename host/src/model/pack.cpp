@@ -103,6 +103,18 @@ int profileDefine(Profile p) {
   return BRDFCL_PROFILE_SPEC;
 }
 
+void checkProfileOptions(const EvalOptions& o) {
+  // An engine profile evaluates its engine's sheen; the spec's sheen variants do not apply to it.
+  const EvalOptions defaults;
+  const char* option = o.sheenVisibility != defaults.sheenVisibility       ? "--sheen-visibility"
+                       : o.sheenDistribution != defaults.sheenDistribution ? "--sheen-distribution"
+                       : o.sheenScaling != defaults.sheenScaling           ? "--sheen-scaling"
+                                                                           : nullptr;
+  if (o.profile != Profile::Spec && option)
+    throw Error(fmt::format("{} applies to --profile spec only; --profile {} uses its engine's own sheen (docs/profiles.md)",
+                            option, toString(o.profile)));
+}
+
 bool FeatureSet::needsSheenAlbedo(const EvalOptions& o) const {
   switch (o.profile) {
     case Profile::Spec: return ratifiedSheen && o.sheenScaling != SheenScaling::None;

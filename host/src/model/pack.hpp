@@ -12,6 +12,9 @@ namespace brdfcl {
 
 // Decoded as `profile`'s engine decodes it (docs/profiles.md); Spec is brdfcl's own decode.
 brdfcl_material packMaterial(const MaterialParams& m, Profile profile = Profile::Spec);
+// Throws brdfcl::Error when an engine profile is combined with a spec-only sheen option
+// ("--sheen-visibility applies to --profile spec only; ...").
+void checkProfileOptions(const EvalOptions& o);
 // The BRDFCL_PROFILE_* value of a profile.
 int profileDefine(Profile p);
 

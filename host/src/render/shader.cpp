@@ -19,6 +19,7 @@
 #include "brdfcl/render.hpp"
 #include "kernels/common/shading_layout.h"
 #include "model/pack.hpp"
+#include "parity/engine_tables.hpp"
 #include "render/exact_ibl.hpp"
 
 namespace brdfcl {
@@ -400,6 +401,7 @@ struct Shader::State {
 Shader::Shader(Runtime& rt, const Scene& scene, EvalOptions options)
     : s_(std::make_unique<State>(State{rt, scene, options, nullptr, {}, 0, {}, {}, {}, false, {}, {}, {}, {}, 0.0f})) {
   auto& s = *s_;
+  checkProfileOptions(options);
   s.light = prepareLight(rt, scene.environment, options);
   try {
     const auto lights = packLights(scene);
@@ -503,9 +505,11 @@ std::vector<float> prefilterEnvironment(Runtime& rt, const std::vector<float>& e
 std::shared_ptr<const PreparedLight> prepareLight(Runtime& rt, const Environment& environment, const EvalOptions& options) {
   static std::mutex mutex;
   static std::map<std::string, std::shared_ptr<const PreparedLight>> cache;
-  const std::string key = fmt::format("{}|{}|{}|{}|{}|{}|{}", static_cast<const void*>(&rt), environment.builtin,
+  const EvalOptions table = sheenTableOptions(options);
+  const std::string key = fmt::format("{}|{}|{}|{}|{}|{}|{}|{}", static_cast<const void*>(&rt), environment.builtin,
                                       environment.builtinKind, environment.path, environment.intensity,
-                                      toString(options.sheenDistribution), toString(options.sheenVisibility));
+                                      toString(table.sheenDistribution), toString(table.sheenVisibility),
+                                      toString(options.profile));
   std::lock_guard<std::mutex> lock(mutex);
   if (auto it = cache.find(key); it != cache.end()) return it->second;
   auto prepared = std::make_shared<PreparedLight>();
@@ -545,8 +549,11 @@ std::shared_ptr<const PreparedLight> prepareLight(Runtime& rt, const Environment
       detail::storeCachedFloats(dfgName, dfg);
     }
     s.dfg = readOnly(ctx, dfg);
-    const auto e = cachedSheenAlbedo(rt, options.sheenDistribution, options.sheenVisibility);
-    s.sheenE = readOnly(ctx, e.values);
+    const auto e = cachedSheenAlbedo(rt, table.sheenDistribution, table.sheenVisibility);
+    std::vector<float> tables = e.values;
+    // Engine profiles read three.js's DFG table right after the E table (docs/profiles.md).
+    if (options.profile != Profile::Spec) tables.insert(tables.end(), threejsDfgTable().begin(), threejsDfgTable().end());
+    s.sheenE = readOnly(ctx, tables);
     s.sheenESize = int(e.width);
     std::vector<float> fl(kFresnelLambertSize);
     for (int i = 0; i < kFresnelLambertSize; ++i) fl[i] = float(fresnelWeightedLambert(double(i) / (kFresnelLambertSize - 1)));
@@ -582,6 +589,10 @@ Image Shader::shade(const GBuffer& g, const ShadeOptions& options, ShadeStats* s
   auto& s = *s_;
   const bool exact = options.ibl == IblMode::Exact;
   if (exact) checkIblSamples(options.iblSamples);
+  if (exact && s.options.profile != Profile::Spec)
+    throw Error(fmt::format("--ibl exact integrates the spec's BRDF only; --profile {} reproduces its engine's own "
+                            "image-based light, so use --ibl split-sum with it",
+                            toString(s.options.profile)));
   auto& planes = s.planes;
   gbufferPlanes(g, planes);
   Image img;
