@@ -16,6 +16,23 @@ namespace ref {
 // Engine profiles: a draft-sheen material has no sheen; the sheen layer exists when
 // max3(sheenColor) > 0 and the coat when clearcoat != 0 (as in ref::brdf); NaN and infinities of
 // the engine's maths are kept (khronos: D_GGX at alpha = 0, N.H = 1 is 0/0).
+//
+// Readings of docs/profiles.md where it leaves room (kernels should match or say otherwise):
+//  - Layers are gated, not just weighted: sheen only when max3(c) > 0, coat only when cc != 0, so
+//    khronos with cc = 0, r_c = 0 is not NaN at L = V = N (the coat is never evaluated).
+//  - E lookups: mu = max(cos, 1e-4); khronos and babylon pass the raw r_s, filament its clamped
+//    rho_s (its own line says E_CN(NdotV, rho_s), over the Tables line's "raw r_s"). E comes from
+//    ref::sheenAlbedo, which integrates directly (ms a call) for mu < 0.01 or r_s outside
+//    [0.05, 1]; r_s = 0 with a non-zero sheen colour is singular there.
+//  - threejs: Ê at the raw N.V / N.L (no 1e-4 floor), its a, b in rho_s; ms per channel (f0_b).
+//  - filament: f90 one scalar from f0.r + f0.g + f0.b; the coat's D is Filament's guarded D
+//    (453.5 cap) at rho_c; the anisotropic D_Burley / V_Heitz have no guard and no clamp.
+//  - babylon: E_ss = DFG(raw r, N.V) (not alphaG's roughness), clamp-to-edge below 1/32.
+//  - materialx: the isotropic case is the Burley form with alpha_t = alpha_b = clamp(alpha, 1e-5,
+//    1); t_d uses comp(F_d(V.H), alpha_bar), so it depends on L as the contract writes it.
+//  - khronos: the "differs from spec only where" list omits the anisotropic V's min(., 1), which
+//    spec does not have; the two differ there too.
+//  - Anisotropy only when anisotropyStrength > 0 (a negative strength is isotropic).
 Rgb profileBrdf(const brdfcl::MaterialParams& m, brdfcl::Profile p, brdfcl::Lobe lobe, Vec3 L,
                 Vec3 V);
 
