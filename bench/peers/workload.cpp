@@ -64,8 +64,16 @@ Workload makeWorkload(const std::string& name, std::uint64_t seed, std::size_t m
   return w;
 }
 
-Bench::Bench(Runtime& rt, const std::string& workload, std::size_t n, std::uint64_t seed, std::size_t materials)
+Bench::Bench(Runtime& rt, const std::string& workload, std::size_t n, std::uint64_t seed, std::size_t materials,
+             Profile profile)
     : workload_(makeWorkload(workload, seed, materials)), n_(n) {
+  if (profile != Profile::Spec) {
+    // An engine's own sheen: the spec's sheen variants of the workload do not apply.
+    const Lobe lobe = workload_.options.lobe;
+    workload_.options = EvalOptions{};
+    workload_.options.lobe = lobe;
+    workload_.options.profile = profile;
+  }
   evaluator_ = std::make_unique<Evaluator>(rt, workload_.options);
   batch_ = std::make_unique<SoaBatch>(*evaluator_, workload_.materials, n);
   Rng rng{seed};

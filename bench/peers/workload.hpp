@@ -32,8 +32,10 @@ constexpr double kBytesPerSample = 40.0;
 // A workload's batch of n samples on the device, plus separate output planes for the peers.
 class Bench {
  public:
+  // `profile` evaluates the workload's materials and pairs under an engine profile
+  // (docs/profiles.md); the C++ peers compute the spec, so they only pair with Profile::Spec.
   Bench(Runtime& rt, const std::string& workload, std::size_t n, std::uint64_t seed = 1,
-        std::size_t materials = kDefaultMaterials);
+        std::size_t materials = kDefaultMaterials, Profile profile = Profile::Spec);
   ~Bench();
   std::size_t size() const { return n_; }
   const Workload& workload() const { return workload_; }

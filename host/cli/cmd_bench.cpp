@@ -34,7 +34,7 @@ double medianSeconds(int runs, F&& f) {
 }
 
 struct BenchArgs {
-  std::string lobe = "all", device;
+  std::string lobe = "all", device, profile = "spec";
   std::size_t n = std::size_t(1) << 22;
   std::size_t materials = bench::kDefaultMaterials;
   std::string pairs;
@@ -81,13 +81,53 @@ void addBenchCommand(CLI::App& app) {
                   "times the kernel only (no peers) and sets --n from the file");
   cmd->add_option("--runs", args->runs, "timed runs after the warm-up; the median is reported (default 7)");
   cmd->add_option("--device", args->device, "device index or name substring (default $BRDFCL_DEVICE, then 0)");
+  cmd->add_option("--profile", args->profile,
+                  "khronos|threejs|filament|babylon|materialx: time that engine profile and spec side by side, "
+                  "interleaved, on the same pairs and materials (docs/profiles.md)");
   cmd->add_flag("--json", args->json, "print one JSON object on stdout");
   cmd->callback([args] {
+    const Profile profile = parseProfile(args->profile);
     if (args->n == 0 || args->n > (std::size_t(1) << 28))
       throw Error(fmt::format("--n {} is out of range; use 1 to 268435456", args->n));
     if (args->runs < 1 || args->runs > 1000) throw Error(fmt::format("--runs {} is out of range; use 1 to 1000", args->runs));
     if (args->materials == 0 || args->materials > (std::size_t(1) << 20))
       throw Error(fmt::format("--materials {} is out of range; use 1 to 1048576", args->materials));
+    if (profile != Profile::Spec) {
+      if (!args->pairs.empty()) throw Error("--pairs and --profile are separate measurements; give one");
+      Runtime rt(args->device);
+      bench::Bench spec(rt, args->lobe, args->n, 1, args->materials);
+      bench::Bench engine(rt, args->lobe, args->n, 1, args->materials, profile);
+      spec.runKernel();  // warm-up and program builds
+      engine.runKernel();
+      // Interleaved runs: both sides see the same machine state, so the ratio is what counts.
+      std::vector<double> ts, te;
+      for (int r = 0; r < args->runs; ++r) {
+        ts.push_back(medianSeconds(1, [&] { spec.runKernel(); }));
+        te.push_back(medianSeconds(1, [&] { engine.runKernel(); }));
+      }
+      std::sort(ts.begin(), ts.end());
+      std::sort(te.begin(), te.end());
+      const double sSpec = double(args->n) / ts[ts.size() / 2], sEngine = double(args->n) / te[te.size() / 2];
+      if (args->json) {
+        const nlohmann::json j = {{"profile", args->profile},
+                                  {"lobe", args->lobe},
+                                  {"n", args->n},
+                                  {"materials", args->materials},
+                                  {"runs", args->runs},
+                                  {"device", rt.info().name},
+                                  {"spec_samples_per_second", sSpec},
+                                  {"profile_samples_per_second", sEngine},
+                                  {"profile_over_spec", sEngine / sSpec}};
+        std::printf("%s\n", j.dump(2).c_str());
+      } else {
+        fmt::print("brdfcl bench: lobe {}, {} samples over {} materials, median of {} interleaved runs, on {}\n",
+                   args->lobe, args->n, args->materials, args->runs, rt.info().name);
+        fmt::print("  {:<28}{:>12.1f} Msamples/s\n", "--profile spec", sSpec / 1e6);
+        fmt::print("  {:<28}{:>12.1f} Msamples/s   {:.2f}x spec's speed\n", "--profile " + args->profile,
+                   sEngine / 1e6, sEngine / sSpec);
+      }
+      return;
+    }
     std::vector<float> pairs;
     if (!args->pairs.empty()) {
       pairs = readPairs(args->pairs);  // before the clock: file I/O is no part of the kernel's time

@@ -345,10 +345,13 @@ Lobes threejs(const Mat& q, const Geometry& g) {
   return out;
 }
 
-// Filament's GGX D: k = min(alpha / (1 - NdotH^2 + (NdotH alpha)^2), 453.5), D = k^2 / pi.
+// Filament's saturateMediump(x) = min(x, MEDIUMP_FLT_MAX = 65504), applied to its D and V terms.
+double mediump(double x) { return std::min(x, 65504.0); }
+
+// Filament's GGX D: k = alpha / (1 - NdotH^2 + (NdotH alpha)^2), D = saturateMediump(k^2 / pi).
 double D_Filament(double alpha, double NdotH) {
-  const double k = std::min(alpha / (1.0 - NdotH * NdotH + (NdotH * alpha) * (NdotH * alpha)), 453.5);
-  return k * k / kPi;
+  const double k = alpha / (1.0 - NdotH * NdotH + (NdotH * alpha) * (NdotH * alpha));
+  return mediump(k * k / kPi);
 }
 
 // ---- filament: Filament (desktop) ----
@@ -367,11 +370,11 @@ Lobes filament(const Mat& q, const Geometry& g) {
     // Kulla's parametrisation with A = s (brdfcl's mapping of glTF strength).
     const double at = std::max(alpha * (1.0 + q.s), 0.002025);
     const double ab = std::max(alpha * (1.0 - q.s), 0.002025);
-    DV = D_Burley(at, ab, dot3(g.H, g.T), dot3(g.H, g.B), g.NdotH) * 0.5 /
-         heitzDenominator(at, ab, g.NdotL, g.NdotV, dot3(g.T, g.V), dot3(g.B, g.V), dot3(g.T, g.L),
-                          dot3(g.B, g.L));
+    DV = mediump(D_Burley(at, ab, dot3(g.H, g.T), dot3(g.H, g.B), g.NdotH)) *
+         mediump(0.5 / heitzDenominator(at, ab, g.NdotL, g.NdotV, dot3(g.T, g.V), dot3(g.B, g.V), dot3(g.T, g.L),
+                                        dot3(g.B, g.L)));
   } else {
-    DV = D_Filament(alpha, g.NdotH) * V_GGXp(alpha, g.NdotL, g.NdotV);
+    DV = D_Filament(alpha, g.NdotH) * mediump(V_GGXp(alpha, g.NdotL, g.NdotV));
   }
   const double Ess = threejsDfgEss(rho, g.NdotV);
 
@@ -389,7 +392,7 @@ Lobes filament(const Mat& q, const Geometry& g) {
     const double rhoC = std::clamp(q.rc, 0.045, 1.0);
     const double alphaC = rhoC * rhoC;
     const double Fcc = q.cc * F_SchlickP(0.04, 1.0, g.VdotH);  // on L.H, not N.V
-    coat = Fcc * D_Filament(alphaC, g.NdotH) * 0.25 / (g.VdotH * g.VdotH);  // Kelemen V
+    coat = Fcc * D_Filament(alphaC, g.NdotH) * mediump(0.25 / (g.VdotH * g.VdotH));  // Kelemen V
     k = 1.0 - Fcc;
   }
 

@@ -25,8 +25,8 @@ namespace ref {
 //    ref::sheenAlbedo, which integrates directly (ms a call) for mu < 0.01 or r_s outside
 //    [0.05, 1]; r_s = 0 with a non-zero sheen colour is singular there.
 //  - threejs: Ê at the raw N.V / N.L (no 1e-4 floor), its a, b in rho_s; ms per channel (f0_b).
-//  - filament: f90 one scalar from f0.r + f0.g + f0.b; the coat's D is Filament's guarded D
-//    (453.5 cap) at rho_c; the anisotropic D_Burley / V_Heitz have no guard and no clamp.
+//  - filament: f90 one scalar from f0.r + f0.g + f0.b; every D and V (and Kelemen's V) goes
+//    through saturateMediump, min(x, 65504), as Filament's source writes them.
 //  - babylon: E_ss = DFG(raw r, N.V) (not alphaG's roughness), clamp-to-edge below 1/32.
 //  - materialx: the isotropic case is the Burley form with alpha_t = alpha_b = clamp(alpha, 1e-5,
 //    1); t_d uses comp(F_d(V.H), alpha_bar), so it depends on L as the contract writes it.

@@ -204,7 +204,7 @@ TEST(MaterialsKeys, ExtrasVendorAndRealNonMaterialExtensionsAreSilent) {
 }
 
 TEST(MaterialsKeys, LeftOutExtensionsWarnOnceNamingWhatIsIgnored) {
-  const char* names[] = {"KHR_materials_ior",          "KHR_materials_specular",        "KHR_materials_transmission",
+  const char* names[] = {"KHR_materials_specular",        "KHR_materials_transmission",
                          "KHR_materials_volume",       "KHR_materials_iridescence",     "KHR_materials_emissive_strength",
                          "KHR_materials_dispersion",   "KHR_materials_diffuse_transmission", "KHR_materials_unlit",
                          "KHR_materials_pbrSpecularGlossiness", "KHR_materials_variants"};
@@ -216,9 +216,12 @@ TEST(MaterialsKeys, LeftOutExtensionsWarnOnceNamingWhatIsIgnored) {
     EXPECT_EQ(line.rfind("m.json: materials[0].extensions.KHR_materials_", 0), 0u) << line;
     EXPECT_NE(line.find(": ignored: "), std::string::npos) << line;
   }
-  EXPECT_EQ(warningsOf(doc(R"({"extensions": {"KHR_materials_ior": {"ior": 1.8}}})")),
-            std::vector<std::string>{"m.json: materials[0].extensions.KHR_materials_ior: ignored: brdfcl's f has no IOR "
-                                     "input (dielectric F0 stays 0.04, the core spec's IOR 1.5)"});
+  EXPECT_EQ(warningsOf(doc(R"({"extensions": {"KHR_materials_specular": {"specularFactor": 0.5}}})")),
+            std::vector<std::string>{"m.json: materials[0].extensions.KHR_materials_specular: ignored: brdfcl's f has "
+                                     "no specular strength or color input (dielectric F0 stays 0.04, F90 stays 1)"});
+  // KHR_materials_ior is read (the engine profiles use it): silent, its keys checked.
+  EXPECT_TRUE(warningsOf(doc(R"({"extensions": {"KHR_materials_ior": {"ior": 1.8}}})")).empty());
+  EXPECT_EQ(warningsOf(doc(R"({"extensions": {"KHR_materials_ior": {"iorr": 1.8}}})")).size(), 1u);
   EXPECT_EQ(errorOf([&] { warningsOf(doc(R"({"extensions": {"KHR_materials_transmission": {}}})"), true); }),
             "m.json: materials[0].extensions.KHR_materials_transmission: not evaluated: brdfcl's f is a reflection "
             "BRDF; transmitted light is not modelled (an error under --strict)");
@@ -456,12 +459,13 @@ TEST_F(InputChecksCli, EvalWarnsOnEachTypoAndStrictMakesItTheError) {
   EXPECT_EQ(r.status, 0) << r.describe();
   EXPECT_TRUE(r.err.empty()) << r.err;
   // A left-out extension: one warning naming what is ignored.
-  const std::string ior = write("i.json", doc(R"({"extensions": {"KHR_materials_ior": {"ior": 2}}})"));
-  const RunResult w = eval(ior, s, dir_.path("i.csv"));
+  const std::string spec = write("i.json", doc(R"({"extensions": {"KHR_materials_specular": {"specularFactor": 2}}})"));
+  const RunResult w = eval(spec, s, dir_.path("i.csv"));
   ASSERT_EQ(w.status, 0) << w.describe();
-  EXPECT_EQ(w.warningLines(), std::vector<std::string>{"brdfcl: warning: " + ior +
-                                                      ": materials[0].extensions.KHR_materials_ior: ignored: brdfcl's f "
-                                                      "has no IOR input (dielectric F0 stays 0.04, the core spec's IOR 1.5)"});
+  EXPECT_EQ(w.warningLines(), std::vector<std::string>{"brdfcl: warning: " + spec +
+                                                      ": materials[0].extensions.KHR_materials_specular: ignored: brdfcl's "
+                                                      "f has no specular strength or color input (dielectric F0 stays 0.04, "
+                                                      "F90 stays 1)"});
 }
 
 TEST_F(InputChecksCli, GlbMaterialsEvaluateLikeTheirJson) {

@@ -305,15 +305,15 @@ TEST(ProfileReference, FilamentSheenScalingIndependentOfLight) {
 }
 
 // Closed form of the coat at L = V = N: cc 0.04 D(alpha_c, 1) 0.25 with Filament's
-// D = min(1/alpha, 453.5)^2 / pi there; r_c = 0.01 is floored to 0.045 and hits the 453.5 guard.
+// D = min(1/(pi alpha^2), 65504) there (saturateMediump); r_c = 0.01 is floored to 0.045, where
+// 1/(pi alpha^2) = 78 000 hits the cap.
 TEST(ProfileReference, FilamentCoatClosedFormAtNormal) {
   MaterialParams m;
   m.clearcoat = 0.8f;
   for (float rc : {0.5f, 0.2f, 0.01f}) {
     m.clearcoatRoughness = rc;
     const double rho = std::max(double(rc), 0.045), alphaC = rho * rho;
-    const double k = std::min(1.0 / alphaC, 453.5);
-    const double want = double(m.clearcoat) * 0.04 * (k * k / kPi) * 0.25;
+    const double want = double(m.clearcoat) * 0.04 * std::min(1.0 / (kPi * alphaC * alphaC), 65504.0) * 0.25;
     EXPECT_LE(relDiff(ref::profileBrdf(m, Profile::Filament, Lobe::Clearcoat, kN, kN)[0], want), 1e-12)
         << "r_c " << rc;
   }

@@ -1,5 +1,6 @@
 // readMaterials/parseMaterials: glTF 2.0 materials (core metallic-roughness, KHR_materials_sheen
-// ratified or draft, KHR_materials_clearcoat, KHR_materials_anisotropy) into MaterialParams.
+// ratified or draft, KHR_materials_clearcoat, KHR_materials_anisotropy, and KHR_materials_ior for
+// the engine profiles) into MaterialParams.
 // Every rejection is one line naming the file and the JSON path of the offending key; keys it
 // does not read are reported by checkMaterialKeys (model/material_keys.hpp), shared with the glTF loader.
 #include <fcntl.h>
@@ -38,7 +39,7 @@ std::string withoutTag(std::string what) { return detail::withoutJsonTag(std::mo
 using Warn = std::function<void(const std::string&)>;
 
 // Intensity: the draft's intensityFactor, >= 0 and at most kMaxDraftIntensity.
-enum class Range { Unit, NonNegative, Intensity, Finite };
+enum class Range { Unit, NonNegative, Intensity, Finite, Ior };
 
 const char* expectedNumber(Range r) {
   switch (r) {
@@ -47,6 +48,8 @@ const char* expectedNumber(Range r) {
     case Range::NonNegative:
     case Range::Intensity:
       return "a number >= 0";
+    case Range::Ior:
+      return "0 or a number >= 1";
     case Range::Finite:
       break;
   }
@@ -128,6 +131,7 @@ class MaterialReader {
     bool ok = std::isfinite(d);
     if (ok && range == Range::Unit) ok = d >= 0.0 && d <= 1.0;
     if (ok && (range == Range::NonNegative || range == Range::Intensity)) ok = d >= 0.0;
+    if (ok && range == Range::Ior) ok = d == 0.0 || d >= 1.0;  // KHR_materials_ior's schema
     if (!ok) fail(path, std::string("expected ") + expected + ", got " + formatNumber(d));
     if (std::fabs(d) > std::numeric_limits<float>::max())
       fail(path, std::string("expected ") + expected + ", got " + formatNumber(d) + " (too large for float)");
@@ -209,6 +213,10 @@ class MaterialReader {
                  [&](const json& v, const std::string& at) { p.anisotropyRotation = number(v, at, Range::Finite); });
         noteTextures(*an, {"anisotropyTexture"}, textures);
       }
+      // Read for the engine profiles (docs/profiles.md); the spec profile's f has no IOR input.
+      const std::string iorPath = extPath + ".KHR_materials_ior";
+      if (const json* io = object(*ext, "KHR_materials_ior", iorPath))
+        optional(*io, "ior", iorPath, [&](const json& v, const std::string& at) { p.ior = number(v, at, Range::Ior); });
       // Other extensions (transmission, volume, ...) are not part of this BRDF: checkMaterialKeys
       // names what each would have changed.
     }

@@ -52,6 +52,8 @@ const Extension kAnisotropy{"KHR_materials_anisotropy",
                             {"anisotropyStrength", "anisotropyRotation", "anisotropyTexture"},
                             {"anisotropyTexture"}};
 const Extension kEmissiveStrength{"KHR_materials_emissive_strength", {"emissiveStrength"}, {}};
+// Read from materials files for the engine profiles (docs/profiles.md; spec's f has no IOR input).
+const Extension kIor{"KHR_materials_ior", {"ior"}, {}};
 
 // Ratified material extensions that f has no input for, with what each would change. Only the
 // materials file reports them: the glTF loader already names them once from extensionsUsed.
@@ -59,7 +61,6 @@ struct LeftOut {
   std::string_view name, why;
 };
 const LeftOut kLeftOut[] = {
-    {"KHR_materials_ior", "brdfcl's f has no IOR input (dielectric F0 stays 0.04, the core spec's IOR 1.5)"},
     {"KHR_materials_specular",
      "brdfcl's f has no specular strength or color input (dielectric F0 stays 0.04, F90 stays 1)"},
     {"KHR_materials_transmission", "brdfcl's f is a reflection BRDF; transmitted light is not modelled"},
@@ -163,6 +164,7 @@ class Checker {
     const bool file = reader_ == MaterialKeyReader::MaterialsFile;
     std::vector<const Extension*> evaluated{file ? &kDraftSheen : &kSheen, &kClearcoat, &kAnisotropy};
     if (!file) evaluated.push_back(&kEmissiveStrength);
+    if (file) evaluated.push_back(&kIor);
     for (auto it = ext.begin(); it != ext.end(); ++it) {
       const std::string& name = it.key();
       const std::string p = at(path, name);

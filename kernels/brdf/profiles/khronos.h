@@ -53,7 +53,8 @@ BRDF_FN rgbw brdf_profile(const material_lanes m, vec3w L, vec3w V, vec3w Lc, ve
     diffuse = rgbw_scale(diffuse, k);
     specular = rgbw_scale(specular, k);
     sheen = rgbw_scale(sheen, k);
-    coat = m.clearcoat * Fc * C;
+    /* Only materials with the extension evaluate the coat: at r_c = 0, C is 0/0 at N.H = 1. */
+    coat = select((realw)(0.0f), m.clearcoat * Fc * C, m.clearcoat > 0.0f);
   }
 #endif
   return select_lobe(diffuse, specular, sheen, coat);
