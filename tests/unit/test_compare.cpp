@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -220,8 +221,15 @@ TEST(Compare, StatisticsMatchTwoEvaluatorsOfTheSameDirections) {
           for (float v : {fa[i], fb[i]})
             if (std::isfinite(v)) maxF = std::max(maxF, double(std::fabs(v)));
         EXPECT_EQ(c.materials[m].maxF, maxF);
-        floors[m] = std::max(1e-6 * maxF, 1.1754943508222875e-38);
-        EXPECT_EQ(c.materials[m].floor, floors[m]);
+        // rho0: the albedo at normal view (albedoViewDegrees starts at 0), largest channel of A or B.
+        ASSERT_EQ(o.albedoViewDegrees[0], 0.0);
+        double rho0 = 0;
+        for (int p = 0; p < 2; ++p)
+          for (int ch = 0; ch < 3; ++ch)
+            if (std::isfinite(alb[p][3 * (m * mus.size()) + ch])) rho0 = std::max(rho0, double(alb[p][3 * (m * mus.size()) + ch]));
+        EXPECT_GT(rho0, 0.05);
+        floors[m] = std::max(1e-3 * (rho0 / M_PI), 1.1754943508222875e-38);
+        EXPECT_DOUBLE_EQ(c.materials[m].floor, floors[m]);
       }
       double maxRel = 0, sum = 0;
       std::size_t compared = 0, nonFinite = 0, worst = 0;
@@ -371,6 +379,7 @@ TEST(CompareHeatMaps, PanelFollowsTheLog2RatioField) {
   m.inPlaneLog2Ratio[45 * 90 + 10] = kNaN;
   m.halfDiffLog2Ratio = m.inPlaneLog2Ratio;
   const plot::Figure f = drawRatioMap(c, m, false);
+  if (const char* keep = std::getenv("BRDFCL_TEST_FIGURES")) plot::writePng(std::string(keep) + "/compare_ratio.png", f.canvas);
   const int s = f.panel.width / 90;
   auto cell = [&](int x, int y) { return f.canvas.at(f.panel.x + x * s + s / 2, f.panel.y + y * s + s / 2); };
   const plot::Colour left = cell(0, 0), right = cell(89, 0);

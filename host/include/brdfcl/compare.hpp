@@ -40,9 +40,10 @@ struct CompareOptions {
   // whose sequence is the same on every platform (no std:: distributions).
   std::size_t randomPairs = 100000;
   std::uint64_t seed = 20261123;
-  // floor = floorFraction x the material's largest finite |f| (any channel, lobe all, either
-  // profile, any sample of compareDirections): differences where f is below a millionth of the peak are not relative.
-  double floorFraction = 1e-6;
+  // floor = floorFraction x rho0 / pi, rho0 the largest finite channel of the directional albedo
+  // at normal view of lobe all under either profile: a thousandth of the f of a Lambertian surface
+  // as bright. Differences below it are not relative (f near 0 off the lobes' peaks).
+  double floorFraction = 1e-3;
   std::vector<double> albedoViewDegrees = {0, 30, 50, 70, 80};
   bool heatMaps = true;  // also evaluate the half/difference grid and fill the log2-ratio fields
 };
@@ -66,7 +67,7 @@ struct LobeComparison {
   Lobe lobe = Lobe::All;
   bool zero = false;  // f == 0 at every sample under both profiles: the report skips it
   RelativeDifference diff;
-  std::array<float, 3> worstL{}, worstV{};
+  std::array<float, 3> worstL{}, worstV{};  // of diff.worst (the first sample when maxRel == 0)
   PairAngles worstAngles;
   // Directional albedo at options.albedoViewDegrees, RGB, of profile A and of profile B.
   std::vector<Rgb> albedoA, albedoB;
@@ -75,8 +76,9 @@ struct LobeComparison {
 struct MaterialComparison {
   std::size_t index = 0;  // the material's index in the user's file (the CLI sets it)
   std::string name;
-  double maxF = 0;   // the largest finite |f| behind the floor
-  double floor = 0;  // floorFraction x maxF, at least the smallest normal float
+  double maxF = 0;      // the largest finite |f| of lobe all over the statistics' samples (reported only)
+  double lambertF = 0;  // rho0 / pi (CompareOptions::floorFraction)
+  double floor = 0;     // floorFraction x lambertF, at least the smallest normal float
   std::vector<LobeComparison> lobes;  // all, diffuse, specular, sheen, clearcoat, zero ones included
   // log2(max(Y_A, floor) / max(Y_B, floor)) of lobe all, Y the Rec. 709 luminance of f; NaN where
   // A or B is not finite. gridSize x gridSize, rows from the top (largest theta_V / theta_d first),

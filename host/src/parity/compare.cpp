@@ -77,7 +77,7 @@ std::vector<float> log2RatioField(const float* fa, const float* fb, int n, doubl
 }
 
 std::string angleText(const LobeComparison& l) {
-  if (l.diff.compared == 0) return "-";
+  if (l.diff.compared == 0 || l.diff.maxRel == 0) return "-";
   return fmt::format("({:.1f}, {:.1f}, {:.1f})", l.worstAngles.thetaL, l.worstAngles.thetaV, l.worstAngles.phi);
 }
 
@@ -187,8 +187,10 @@ Comparison compareProfiles(Runtime& rt, const std::vector<MaterialParams>& mater
     dirs.V.insert(dirs.V.end(), hd.V.begin(), hd.V.end());
   }
   const std::size_t nAll = dirs.size();
-  std::vector<float> mus;
+  // mus[0] = 1 (normal view) for the floor; the reported view angles follow.
+  std::vector<float> mus = {1.0f};
   for (double a : options.albedoViewDegrees) mus.push_back(float(std::cos(a * kDeg)));
+  const std::size_t nViews = mus.size();
 
   c.materials.resize(materials.size());
   for (std::size_t m = 0; m < materials.size(); ++m) {
@@ -210,15 +212,24 @@ Comparison compareProfiles(Runtime& rt, const std::vector<MaterialParams>& mater
       const float* fa = f[0].data() + 3 * m * nAll;
       const float* fb = f[1].data() + 3 * m * nAll;
       if (lobe == Lobe::All) {
-        // The floor comes from the sum of the lobes, so a faint lobe is judged against the
-        // material's peak, not its own; and from the statistics' samples only, so --out
-        // (the half/difference grid) does not change the numbers.
+        // Statistics' samples only, so that --out (the half/difference grid) changes no number.
         double maxF = 0;
         for (const float* g : {fa, fb})
           for (std::size_t i = 0; i < 3 * nStats; ++i)
             if (std::isfinite(g[i])) maxF = std::max(maxF, double(std::fabs(g[i])));
         mc.maxF = maxF;
-        mc.floor = std::max(options.floorFraction * maxF, double(FLT_MIN));
+        // The floor scales with the f of a Lambertian surface of the material's albedo, not with
+        // the peak of f: a smooth coat peaks at 1e4..1e7 1/sr at grazing mirror angles, and a
+        // fraction of that would swamp the diffuse lobe. Lobe all, so a faint lobe is judged
+        // against the material, not against itself.
+        double rho0 = 0;
+        for (int p = 0; p < 2; ++p)
+          for (int ch = 0; ch < 3; ++ch) {
+            const float v = albedo[p][3 * (m * nViews) + ch];
+            if (std::isfinite(v)) rho0 = std::max(rho0, double(v));
+          }
+        mc.lambertF = rho0 / M_PI;
+        mc.floor = std::max(options.floorFraction * mc.lambertF, double(FLT_MIN));
         if (options.heatMaps) {
           mc.inPlaneLog2Ratio = log2RatioField(fa, fb, n, mc.floor);
           mc.halfDiffLog2Ratio = log2RatioField(fa + 3 * nStats, fb + 3 * nStats, n, mc.floor);
@@ -235,9 +246,9 @@ Comparison compareProfiles(Runtime& rt, const std::vector<MaterialParams>& mater
         std::copy(dirs.V.begin() + 3 * w, dirs.V.begin() + 3 * w + 3, lc.worstV.begin());
         lc.worstAngles = pairAngles(lc.worstL.data(), lc.worstV.data());
       }
-      for (std::size_t v = 0; v < mus.size(); ++v) {
-        const float* ra = &albedo[0][3 * (m * mus.size() + v)];
-        const float* rb = &albedo[1][3 * (m * mus.size() + v)];
+      for (std::size_t v = 1; v < nViews; ++v) {
+        const float* ra = &albedo[0][3 * (m * nViews + v)];
+        const float* rb = &albedo[1][3 * (m * nViews + v)];
         lc.albedoA.push_back({ra[0], ra[1], ra[2]});
         lc.albedoB.push_back({rb[0], rb[1], rb[2]});
       }
@@ -256,13 +267,14 @@ std::string formatComparison(const Comparison& c) {
   s += fmt::format(
       "Samples: {} in the incidence plane ({} x {} cell centres of theta_L x theta_V in [0, 90) deg, L and V at\n"
       "opposite azimuths) and {} out of it (L and V uniform on the hemisphere, seed {}).\n"
-      "d = max over r,g,b of |f_A - f_B| / max(|f_B|, floor), floor = {} x the material's largest |f|;\n"
+      "d = max over r,g,b of |f_A - f_B| / max(|f_B|, floor), floor = {} x rho0 / pi, rho0 the largest channel\n"
+      "of the directional albedo at normal view (lobe all, either profile): the f of a Lambertian surface as bright;\n"
       "samples where A or B is NaN or infinite are counted as not finite, not compared.\n"
       "Worst case at (theta_L, theta_V, phi) in degrees, phi = phi_L - phi_V (180: the incidence plane).\n",
       c.inPlaneSamples, o.gridSize, o.gridSize, c.randomSamples, o.seed, formatStat(o.floorFraction));
   for (const MaterialComparison& m : c.materials) {
-    s += fmt::format("\n[{}] {}  (largest |f| {} 1/sr, floor {} 1/sr)\n", m.index, detail::printable(m.name, 60),
-                     formatStat(m.maxF), formatStat(m.floor));
+    s += fmt::format("\n[{}] {}  (rho0 / pi {} 1/sr, floor {} 1/sr, largest |f| {} 1/sr)\n", m.index,
+                     detail::printable(m.name, 60), formatStat(m.lambertF), formatStat(m.floor), formatStat(m.maxF));
     s += fmt::format("  {:<10}{:>11}{:>11}{:>16}   {}\n", "lobe", "max d", "mean d", "not finite A/B", "worst at");
     std::vector<std::string> skipped;
     for (const LobeComparison& l : m.lobes) {
@@ -313,7 +325,7 @@ std::string comparisonJson(const Comparison& c, const std::vector<std::vector<st
         rgbB.push_back({number(l.albedoB[v][0]), number(l.albedoB[v][1]), number(l.albedoB[v][2])});
       }
       nlohmann::json worst = nullptr;
-      if (l.diff.compared > 0)
+      if (l.diff.compared > 0 && l.diff.maxRel > 0)
         worst = {{"theta_l", l.worstAngles.thetaL}, {"theta_v", l.worstAngles.thetaV}, {"phi", l.worstAngles.phi},
                  {"L", {l.worstL[0], l.worstL[1], l.worstL[2]}}, {"V", {l.worstV[0], l.worstV[1], l.worstV[2]}}};
       const bool any = l.diff.compared > 0;
@@ -334,6 +346,7 @@ std::string comparisonJson(const Comparison& c, const std::vector<std::vector<st
     mats.push_back({{"index", m.index},
                     {"name", m.name},
                     {"max_f", number(m.maxF)},
+                    {"lambert_f", number(m.lambertF)},
                     {"floor", number(m.floor)},
                     {"lobes", lobes},
                     {"skipped_lobes", skipped},
@@ -388,7 +401,7 @@ plot::Figure drawRatioMap(const Comparison& c, const MaterialComparison& m, bool
   h.subtitle.push_back(fmt::format("colour: log2(Y_{} / Y_{}), Y = luminance of f, floored at {} 1/sr", a, b,
                                    detail::formatStat(m.floor)));
   h.subtitle.push_back(fmt::format("max |log2 ratio| {}{}", detail::formatStat(maxAbs),
-                                   nonFinite ? fmt::format("; magenta: {} cells not finite", nonFinite) : ""));
+                                   nonFinite ? fmt::format("; magenta: {} cell(s) not finite", nonFinite) : ""));
   h.xLabel = halfDiff ? "theta_h (deg)" : "theta_L (deg)";
   h.yLabel = halfDiff ? "theta_d (deg)" : "theta_V (deg)";
   h.barLabel = fmt::format("log2({} / {})", a, b);
