@@ -17,6 +17,7 @@ void addRenderCommands(CLI::App& app);
 void addBenchCommand(CLI::App& app);
 void addLutCommand(CLI::App& app);
 void addDiffCommand(CLI::App& app);
+void addCompareCommand(CLI::App& app);
 
 // "brdfcl: warning: <text>" on stderr: the one form every command warns in.
 void printWarning(const std::string& text);

@@ -42,6 +42,7 @@ int main(int argc, char** argv) {
   brdfcl::cli::addBenchCommand(app);
   brdfcl::cli::addLutCommand(app);
   brdfcl::cli::addDiffCommand(app);
+  brdfcl::cli::addCompareCommand(app);
   if (argc < 2) {
     std::fputs(app.help().c_str(), stdout);
     return 0;
