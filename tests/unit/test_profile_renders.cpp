@@ -99,7 +99,10 @@ TEST_P(ProfileRenders, EveryProfileShadesTheModelAndDeviatesWhereItShould) {
   }
   EXPECT_LE(worstPlain, 1e-4) << "khronos differs from spec on a pixel with no deviating input (" << plain << " such pixels)";
   const std::string name = GetParam();
-  if (name.rfind("Sheen", 0) == 0) EXPECT_GT(differing, 0u) << "no sheen pixel shows the V_Charlie clamp (" << deviating << " sheen pixels)";
+  // SheenChair's velvet (sheen roughness 0.8, no texture) has V_Charlie > 1 where N.L N.V is small;
+  // SheenCloth's (roughness 1 times a texture) stays below 1 at this view, so there the two agree.
+  if (name.rfind("SheenChair", 0) == 0)
+    EXPECT_GT(differing, 0u) << "no sheen pixel shows the V_Charlie clamp (" << deviating << " pixels may)";
   RecordProperty("khronos_plain_pixels", std::to_string(plain));
   RecordProperty("khronos_deviating_pixels", std::to_string(deviating));
 }
