@@ -21,18 +21,6 @@ struct CompareArgs {
   bool strict = false, json = false;
 };
 
-// parseProfile names --profile in its message; --against takes the same values.
-Profile parseAgainst(const std::string& s) {
-  try {
-    return parseProfile(s);
-  } catch (const Error& e) {
-    std::string what = e.what();
-    const auto at = what.find("--profile");
-    if (at != std::string::npos) what.replace(at, 9, "--against");
-    throw Error(what);
-  }
-}
-
 // The directory is created now, before any input is read, so a bad --out fails before the work.
 void prepareOutDir(const std::string& dir) {
   namespace fs = std::filesystem;
@@ -59,7 +47,7 @@ void addCompareCommand(CLI::App& app) {
   cmd->callback([args, cmd] {
     CompareOptions o;
     o.a = parseProfile(args->profile);
-    o.b = parseAgainst(args->against);
+    o.b = parseProfile(args->against, "--against");
     if (args->pairs < 0 || args->pairs > 100000000)
       throw Error(fmt::format("--pairs {} is out of range; use 0 to 100000000", args->pairs));
     o.randomPairs = std::size_t(args->pairs);

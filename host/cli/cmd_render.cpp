@@ -204,7 +204,7 @@ struct ProfileArgs {
   }
   EvalOptions againstOptions() const {
     EvalOptions o;
-    o.profile = parseProfile(against);
+    o.profile = parseProfile(against, "--diff-against");
     return o;
   }
 };

@@ -231,7 +231,7 @@ TEST(MaterialsKeys, FarTyposListWhatIsKnownAndTextureInfosAreChecked) {
   EXPECT_EQ(warningsOf(doc(R"({"extensions": {"KHR_materials_fluorescence": {}}})")),
             std::vector<std::string>{"m.json: materials[0].extensions.KHR_materials_fluorescence: unknown extension, "
                                      "ignored (brdfcl reads KHR_materials_sheen, KHR_materials_clearcoat, "
-                                     "KHR_materials_anisotropy)"});
+                                     "KHR_materials_anisotropy, KHR_materials_ior)"});
   // Lower-case prefixes are Khronos typos too, not a vendor's.
   EXPECT_EQ(warningsOf(doc(R"({"extensions": {"khr_materials_clearcoat": {}}})")),
             std::vector<std::string>{"m.json: materials[0].extensions.khr_materials_clearcoat: unknown extension, "

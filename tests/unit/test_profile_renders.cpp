@@ -148,6 +148,18 @@ TEST(ProfileRendersCli, EveryProfileAndDiffAgainst) {
   ASSERT_EQ(bad.errorLines().size(), 1u) << bad.describe();
   EXPECT_CONTAINS(bad.errorLines()[0], "unknown --profile value 'unity'; use spec, khronos, threejs, filament, babylon or materialx");
   EXPECT_FALSE(std::filesystem::exists(dir.path("x.png")));
+  // With --diff-against, --out is the picture; a bad --diff-against value is named as such.
+  const auto notPng = runProcess({BRDFCL_CLI_PATH, "render", "--gltf", path, "--profile", "babylon", "--diff-against", "spec",
+                                  "--out", dir.path("z.exr")},
+                                 dir.dir());
+  EXPECT_EQ(notPng.status, 2) << notPng.describe();
+  EXPECT_CONTAINS(notPng.err, "with --diff-against it is the difference picture, a .png");
+  const auto badAgainst = runProcess({BRDFCL_CLI_PATH, "render", "--gltf", path, "--diff-against", "unreal", "--out",
+                                      dir.path("z.png")},
+                                     dir.dir());
+  EXPECT_EQ(badAgainst.status, 2) << badAgainst.describe();
+  EXPECT_CONTAINS(badAgainst.err, "unknown --diff-against value 'unreal'");
+  EXPECT_FALSE(std::filesystem::exists(dir.path("z.png")));
   // --ibl exact is the spec's integrator.
   const auto exact = runProcess({BRDFCL_CLI_PATH, "render", "--gltf", path, "--profile", "khronos", "--ibl", "exact",
                                  "--out", dir.path("y.png")},

@@ -4,6 +4,10 @@
 // Then each documented deviation where it should show, and nowhere else, on the kernels.
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
+
+#include "process.hpp"
 #include "reference/profiles.hpp"
 #include "support.hpp"
 
@@ -289,6 +293,37 @@ TEST(ProfileDeviations, SpecSheenOptionsAreRefusedUnderAnEngineProfile) {
   EXPECT_EQ(errorOf([&] { Evaluator(runtime(), o); }),
             "--sheen-scaling applies to --profile spec only; --profile filament uses its engine's own sheen "
             "(docs/profiles.md)");
+}
+
+// Through the CLI: option clashes and a bad IOR are one line and exit 2, before any output.
+TEST(ProfileDeviations, ProfileOptionsAreCheckedBeforeWork) {
+  ScratchDir dir("profile-options");
+  const std::string materials = dir.path("m.json"), samples = dir.path("s.csv");
+  {
+    std::ofstream(materials) << R"({"materials": [{"extensions": {"KHR_materials_ior": {"ior": 0.5}}}]})";
+    std::ofstream(samples) << "material,Lx,Ly,Lz,Vx,Vy,Vz\n0,0,0,1,0,0,1\n";
+  }
+  const auto clash = runProcess({BRDFCL_CLI_PATH, "eval", "--materials", materials, "--samples", samples, "--out",
+                                 dir.path("o.csv"), "--profile", "babylon", "--sheen-visibility", "ashikhmin"},
+                                dir.dir());
+  EXPECT_EQ(clash.status, 2) << clash.describe();
+  EXPECT_EQ(clash.errorLines(), std::vector<std::string>{"brdfcl: --sheen-visibility applies to --profile spec only; "
+                                                         "--profile babylon uses its engine's own sheen (docs/profiles.md)"});
+  const auto ior = runProcess({BRDFCL_CLI_PATH, "eval", "--materials", materials, "--samples", samples, "--out",
+                               dir.path("o.csv"), "--profile", "khronos"},
+                              dir.dir());
+  EXPECT_EQ(ior.status, 2) << ior.describe();
+  ASSERT_EQ(ior.errorLines().size(), 1u) << ior.describe();
+  EXPECT_CONTAINS(ior.errorLines()[0], "materials[0].extensions.KHR_materials_ior.ior: expected 0 or a number >= 1, got 0.5");
+  EXPECT_FALSE(std::filesystem::exists(dir.path("o.csv")));
+  const auto bench = runProcess({BRDFCL_CLI_PATH, "bench", "--pairs", samples, "--profile", "threejs"}, dir.dir());
+  EXPECT_EQ(bench.status, 2) << bench.describe();
+  EXPECT_EQ(bench.errorLines(), std::vector<std::string>{"brdfcl: --pairs and --profile are separate measurements; give one"});
+  // The library refuses the same IOR.
+  MaterialParams m;
+  m.ior = 0.5f;
+  EXPECT_EQ(errorOf([&] { Evaluator(runtime(), EvalOptions{}).evaluate({m}, directionsOf({{0, 0, 1, 0, 0, 1}})); }),
+            "material 0: ior must be 0 or a number >= 1, got 0.5");
 }
 
 }  // namespace

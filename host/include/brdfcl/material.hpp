@@ -72,7 +72,7 @@ SheenVisibility parseSheenVisibility(const std::string& s);
 SheenDistribution parseSheenDistribution(const std::string& s);
 SheenScaling parseSheenScaling(const std::string& s);
 Lobe parseLobe(const std::string& s);
-Profile parseProfile(const std::string& s);
+Profile parseProfile(const std::string& s, const char* option = "--profile");  // option: named in the message
 const char* toString(SheenVisibility v);
 const char* toString(SheenDistribution d);
 const char* toString(SheenScaling s);

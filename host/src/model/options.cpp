@@ -66,7 +66,7 @@ SheenDistribution parseSheenDistribution(const std::string& s) {
 }
 SheenScaling parseSheenScaling(const std::string& s) { return parseFrom(kScaling, "--sheen-scaling", s); }
 Lobe parseLobe(const std::string& s) { return parseFrom(kLobe, "--lobe", s); }
-Profile parseProfile(const std::string& s) { return parseFrom(kProfile, "--profile", s); }
+Profile parseProfile(const std::string& s, const char* option) { return parseFrom(kProfile, option, s); }
 
 const char* toString(SheenVisibility v) { return nameOf(kVisibility, v); }
 const char* toString(SheenDistribution d) { return nameOf(kDistribution, d); }
