@@ -166,4 +166,34 @@ BRDF_FN rgbw select_lobe(rgbw diffuse, rgbw specular, rgbw sheen, realw clearcoa
 BRDF_FN realw along_t(realw x, realw y, realw c, realw s) { return x * c + y * s; }
 BRDF_FN realw along_b(realw x, realw y, realw c, realw s) { return y * c - x * s; }
 
+/* The anisotropic lobe in the material's rotated frame, at (alpha_t, alpha) as the profile
+   packed them: Burley's D (N.H given, for engines that clamp it) and Heitz's V denominator. */
+BRDF_FN realw D_BurleyRotated(const material_lanes m, engine_geometry g, realw NdotH) {
+  return D_Burley(along_t(g.hx, g.hy, m.aniso_cos, m.aniso_sin), along_b(g.hx, g.hy, m.aniso_cos, m.aniso_sin), NdotH,
+                  m.alpha_t, m.alpha);
+}
+
+BRDF_FN realw Lambda_HeitzRotated(const material_lanes m, engine_geometry g, vec3w L, vec3w V) {
+  realw c = m.aniso_cos, s = m.aniso_sin;
+  return Lambda_HeitzSum(g.NdotL, g.NdotV, along_t(V.x, V.y, c, s), along_b(V.x, V.y, c, s), along_t(L.x, L.y, c, s),
+                         along_b(L.x, L.y, c, s), m.alpha_t, m.alpha);
+}
+
+/* A sheen lobe: the sheen colour times the white lobe D V. */
+BRDF_FN rgbw sheen_coloured(const material_lanes m, realw dv) {
+  rgbw out = {m.sheen_r * dv, m.sheen_g * dv, m.sheen_b * dv};
+  return out;
+}
+
+/* View-only albedo scaling, 1 - max3(c) E(N.V), from the E table (Filament, Babylon). */
+BRDF_FN realw sheen_scaling_view(const material_lanes m, __global const float* table, int size, realw NdotV) {
+  return 1.0f - m.sheen_max * E_SheenAlbedo(table, size, E_SheenAlbedoRow(size, m.sheen_roughness), NdotV);
+}
+
+/* F0 per channel: mix(f0_dielectric, baseColor, metallic). */
+BRDF_FN rgbw f0_metallic(const material_lanes m) {
+  rgbw f0 = {mix(m.ior_f0, m.base_r, m.metallic), mix(m.ior_f0, m.base_g, m.metallic), mix(m.ior_f0, m.base_b, m.metallic)};
+  return f0;
+}
+
 #endif

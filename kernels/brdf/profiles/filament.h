@@ -20,31 +20,23 @@ BRDF_FN rgbw brdf_profile(const material_lanes m, vec3w L, vec3w V, vec3w Lc, ve
   engine_geometry g = engine_geometry_of(L, V);
 #if BRDFCL_HAS_ANISOTROPY
   /* alpha_t = alpha (1 + A), alpha = alpha (1 - A): equal at A = 0, the isotropic lobe. */
-  realw c = m.aniso_cos, s = m.aniso_sin;
-  realw S = min(D_Burley(along_t(g.hx, g.hy, c, s), along_b(g.hx, g.hy, c, s), g.hz, m.alpha_t, m.alpha), BRDFCL_MEDIUMP_MAX) *
-            min(0.5f / Lambda_HeitzSum(g.NdotL, g.NdotV, along_t(V.x, V.y, c, s), along_b(V.x, V.y, c, s),
-                                       along_t(L.x, L.y, c, s), along_b(L.x, L.y, c, s), m.alpha_t, m.alpha),
-                BRDFCL_MEDIUMP_MAX);
+  realw S = min(D_BurleyRotated(m, g, g.hz), BRDFCL_MEDIUMP_MAX) * min(0.5f / Lambda_HeitzRotated(m, g, L, V), BRDFCL_MEDIUMP_MAX);
 #else
   realw S = D_GGX_Filament(g.sin2, g.cos2, m.alpha) *
             min(0.5f / Lambda_SmithSum(g.NdotL, g.NdotV, m.alpha), BRDFCL_MEDIUMP_MAX);
 #endif
-  realw f0r = mix(m.ior_f0, m.base_r, m.metallic), f0g = mix(m.ior_f0, m.base_g, m.metallic),
-        f0b = mix(m.ior_f0, m.base_b, m.metallic);
-  realw f90 = clamp(16.5f * (f0r + f0g + f0b), 0.0f, 1.0f);
+  rgbw f0 = f0_metallic(m);
+  realw f90 = clamp(16.5f * (f0.r + f0.g + f0.b), 0.0f, 1.0f);
   realw ec_k = 1.0f / Ess_ThreeJs(dfg, m.roughness, g.NdotV) - 1.0f;
-  rgbw specular = {F_Schlick90(f0r, f90, g.s5) * S * (1.0f + f0r * ec_k), F_Schlick90(f0g, f90, g.s5) * S * (1.0f + f0g * ec_k),
-                   F_Schlick90(f0b, f90, g.s5) * S * (1.0f + f0b * ec_k)};
+  rgbw specular = {F_Schlick90(f0.r, f90, g.s5) * S * (1.0f + f0.r * ec_k), F_Schlick90(f0.g, f90, g.s5) * S * (1.0f + f0.g * ec_k),
+                   F_Schlick90(f0.b, f90, g.s5) * S * (1.0f + f0.b * ec_k)};
   realw kd = (1.0f - m.metallic) * M_1_PI_F;
   rgbw diffuse = {kd * m.base_r, kd * m.base_g, kd * m.base_b};
   rgbw sheen = rgbw_splat(0.0f);
 #if BRDFCL_HAS_SHEEN
   {
-    realw dv = D_CharlieFloored(g.sin2, g.cos2, m.sheen_alpha) * V_Ashikhmin(g.NdotL, g.NdotV);
-    sheen.r = m.sheen_r * dv;
-    sheen.g = m.sheen_g * dv;
-    sheen.b = m.sheen_b * dv;
-    realw sh = 1.0f - m.sheen_max * E_SheenAlbedo(tables, e_size, E_SheenAlbedoRow(e_size, m.sheen_roughness), g.NdotV);
+    sheen = sheen_coloured(m, D_CharlieFloored(g.sin2, g.cos2, m.sheen_alpha) * V_Ashikhmin(g.NdotL, g.NdotV));
+    realw sh = sheen_scaling_view(m, tables, e_size, g.NdotV);
     diffuse = rgbw_scale(diffuse, sh);
     specular = rgbw_scale(specular, sh);
   }

@@ -13,11 +13,8 @@ BRDF_FN rgbw brdf_profile(const material_lanes m, vec3w L, vec3w V, vec3w Lc, ve
 #if BRDFCL_HAS_ANISOTROPY
   {
     /* BRDF_specularGGXAnisotropy: ab floored at 0.001 (packed), N.H clamped to [0.001, 1], V <= 1. */
-    realw c = m.aniso_cos, s = m.aniso_sin;
-    realw hn = clamp(g.hz, 0.001f, 1.0f);
-    realw D = D_Burley(along_t(g.hx, g.hy, c, s), along_b(g.hx, g.hy, c, s), hn, m.alpha_t, m.alpha);
-    realw Va = 0.5f / Lambda_HeitzSum(g.NdotL, g.NdotV, along_t(V.x, V.y, c, s), along_b(V.x, V.y, c, s),
-                                      along_t(L.x, L.y, c, s), along_b(L.x, L.y, c, s), m.alpha_t, m.alpha);
+    realw D = D_BurleyRotated(m, g, clamp(g.hz, 0.001f, 1.0f));
+    realw Va = 0.5f / Lambda_HeitzRotated(m, g, L, V);
     S = select(S, D * min(Va, 1.0f), m.aniso_strength > 0.0f);
   }
 #endif
@@ -31,10 +28,7 @@ BRDF_FN rgbw brdf_profile(const material_lanes m, vec3w L, vec3w V, vec3w Lc, ve
   rgbw sheen = rgbw_splat(0.0f);
 #if BRDFCL_HAS_SHEEN
   {
-    realw dv = D_Charlie(g.sin2, g.cos2, m.sheen_alpha) * min(V_Charlie(g.NdotL, g.NdotV, m.sheen_alpha), 1.0f);
-    sheen.r = m.sheen_r * dv;
-    sheen.g = m.sheen_g * dv;
-    sheen.b = m.sheen_b * dv;
+    sheen = sheen_coloured(m, D_Charlie(g.sin2, g.cos2, m.sheen_alpha) * min(V_Charlie(g.NdotL, g.NdotV, m.sheen_alpha), 1.0f));
     sheen_albedo_row row = E_SheenAlbedoRow(e_size, m.sheen_roughness);
     realw sh = min(1.0f - m.sheen_max * E_SheenAlbedo(tables, e_size, row, g.NdotV),
                    1.0f - m.sheen_max * E_SheenAlbedo(tables, e_size, row, g.NdotL));

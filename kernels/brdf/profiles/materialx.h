@@ -13,8 +13,7 @@ BRDF_FN rgbw brdf_profile(const material_lanes m, vec3w L, vec3w V, vec3w Lc, ve
                           __global const float* tables, int e_size) {
   engine_geometry g = engine_geometry_of(L, V);
 #if BRDFCL_HAS_ANISOTROPY
-  realw c = m.aniso_cos, s = m.aniso_sin;
-  realw D = D_Burley(along_t(g.hx, g.hy, c, s), along_b(g.hx, g.hy, c, s), g.hz, m.alpha_t, m.alpha);
+  realw D = D_BurleyRotated(m, g, g.hz);
   realw avg = sqrt(m.alpha_t * m.alpha);
 #else
   realw D = D_GGX_HalfAngle(g.sin2, g.cos2, m.alpha);
@@ -39,10 +38,7 @@ BRDF_FN rgbw brdf_profile(const material_lanes m, vec3w L, vec3w V, vec3w Lc, ve
   rgbw sheen = rgbw_splat(0.0f);
 #if BRDFCL_HAS_SHEEN
   {
-    realw dv = D_Charlie(g.sin2, g.cos2, max(m.sheen_alpha, 0.005f)) * V_Ashikhmin(g.NdotL, g.NdotV);
-    sheen.r = m.sheen_r * dv;
-    sheen.g = m.sheen_g * dv;
-    sheen.b = m.sheen_b * dv;
+    sheen = sheen_coloured(m, D_Charlie(g.sin2, g.cos2, max(m.sheen_alpha, 0.005f)) * V_Ashikhmin(g.NdotL, g.NdotV));
     realw t_s = 1.0f - m.sheen_max * E_SheenMaterialX(g.NdotV, m.sheen_alpha);
     diffuse = rgbw_scale(diffuse, t_s);
     specular = rgbw_scale(specular, t_s);

@@ -12,28 +12,22 @@ BRDF_FN rgbw brdf_profile(const material_lanes m, vec3w L, vec3w V, vec3w Lc, ve
   engine_geometry g = engine_geometry_of(L, V);
 #if BRDFCL_HAS_ANISOTROPY
   /* With strength 0 (alpha_t = alpha) this is the isotropic lobe. */
-  realw c = m.aniso_cos, s = m.aniso_sin;
-  realw S = D_Burley(along_t(g.hx, g.hy, c, s), along_b(g.hx, g.hy, c, s), g.hz, m.alpha_t, m.alpha) * 0.5f /
-            max(Lambda_HeitzSum(g.NdotL, g.NdotV, along_t(V.x, V.y, c, s), along_b(V.x, V.y, c, s),
-                                along_t(L.x, L.y, c, s), along_b(L.x, L.y, c, s), m.alpha_t, m.alpha), 1e-6f);
+  realw S = D_BurleyRotated(m, g, g.hz) * 0.5f / max(Lambda_HeitzRotated(m, g, L, V), 1e-6f);
 #else
   realw S = D_GGX_HalfAngle(g.sin2, g.cos2, m.alpha) * 0.5f / max(Lambda_SmithSum(g.NdotL, g.NdotV, m.alpha), 1e-6f);
 #endif
   realw fs = Fs_SphericalGaussian(g.VdotH);
   realw f0d = m.ior_f0;
   realw ms_k = 1.0f / Ess_ThreeJs(dfg, m.roughness, g.NdotV) - 1.0f;
-  realw f0r = mix(f0d, m.base_r, m.metallic), f0g = mix(f0d, m.base_g, m.metallic), f0b = mix(f0d, m.base_b, m.metallic);
-  rgbw specular = {F_SchlickSG(f0r, 1.0f, fs) * S * (1.0f + f0r * ms_k), F_SchlickSG(f0g, 1.0f, fs) * S * (1.0f + f0g * ms_k),
-                   F_SchlickSG(f0b, 1.0f, fs) * S * (1.0f + f0b * ms_k)};
+  rgbw f0 = f0_metallic(m);
+  rgbw specular = {F_SchlickSG(f0.r, 1.0f, fs) * S * (1.0f + f0.r * ms_k), F_SchlickSG(f0.g, 1.0f, fs) * S * (1.0f + f0.g * ms_k),
+                   F_SchlickSG(f0.b, 1.0f, fs) * S * (1.0f + f0.b * ms_k)};
   realw kd = (1.0f - m.metallic) * (1.0f - F_SchlickSG(f0d, 1.0f, fs)) * M_1_PI_F;
   rgbw diffuse = {kd * m.base_r, kd * m.base_g, kd * m.base_b};
   rgbw sheen = rgbw_splat(0.0f);
 #if BRDFCL_HAS_SHEEN
   {
-    realw dv = D_CharlieFloored(g.sin2, g.cos2, m.sheen_alpha) * min(V_Ashikhmin(g.NdotL, g.NdotV), 1.0f);
-    sheen.r = m.sheen_r * dv;
-    sheen.g = m.sheen_g * dv;
-    sheen.b = m.sheen_b * dv;
+    sheen = sheen_coloured(m, D_CharlieFloored(g.sin2, g.cos2, m.sheen_alpha) * min(V_Ashikhmin(g.NdotL, g.NdotV), 1.0f));
     realw sh = 1.0f - m.sheen_max * max(E_SheenThreeJs(g.NdotV, m.sheen_roughness), E_SheenThreeJs(g.NdotL, m.sheen_roughness));
     diffuse = rgbw_scale(diffuse, sh);
     specular = rgbw_scale(specular, sh);
