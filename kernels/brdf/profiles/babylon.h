@@ -30,8 +30,7 @@ BRDF_FN rgbw brdf_profile(const material_lanes m, vec3w L, vec3w V, vec3w Lc, ve
   {
     sheen = sheen_coloured(m, D_Charlie(g.sin2, g.cos2, m.sheen_alpha) * V_Ashikhmin(g.NdotL, g.NdotV));
     realw sh = sheen_scaling_view(m, tables, e_size, g.NdotV);
-    diffuse = rgbw_scale(diffuse, sh);
-    specular = rgbw_scale(specular, sh);
+    scale_base(&diffuse, &specular, sh);
   }
 #endif
   realw coat = 0.0f;
@@ -40,9 +39,7 @@ BRDF_FN rgbw brdf_profile(const material_lanes m, vec3w L, vec3w V, vec3w Lc, ve
     engine_geometry gc = engine_geometry_of(Lc, Vc);
     realw Fc = m.clearcoat * F_Schlick90(0.04f, 1.0f, gc.s5);
     realw k = 1.0f - Fc;
-    diffuse = rgbw_scale(diffuse, k);
-    specular = rgbw_scale(specular, k);
-    sheen = rgbw_scale(sheen, k);
+    scale_below(&diffuse, &specular, &sheen, k);
     coat = Fc * D_GGX_HalfAngle(gc.sin2, gc.cos2, m.clearcoat_alpha) * V_Kelemen(gc.VdotH);
   }
 #endif

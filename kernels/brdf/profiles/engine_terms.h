@@ -190,6 +190,18 @@ BRDF_FN realw sheen_scaling_view(const material_lanes m, __global const float* t
   return 1.0f - m.sheen_max * E_SheenAlbedo(table, size, E_SheenAlbedoRow(size, m.sheen_roughness), NdotV);
 }
 
+/* A layer above scales what lies below it: the base (diffuse and specular) and, where the engine
+   puts it below, the sheen. */
+BRDF_FN void scale_base(rgbw* diffuse, rgbw* specular, realw k) {
+  *diffuse = rgbw_scale(*diffuse, k);
+  *specular = rgbw_scale(*specular, k);
+}
+
+BRDF_FN void scale_below(rgbw* diffuse, rgbw* specular, rgbw* sheen, realw k) {
+  scale_base(diffuse, specular, k);
+  *sheen = rgbw_scale(*sheen, k);
+}
+
 /* F0 per channel: mix(f0_dielectric, baseColor, metallic). */
 BRDF_FN rgbw f0_metallic(const material_lanes m) {
   rgbw f0 = {mix(m.ior_f0, m.base_r, m.metallic), mix(m.ior_f0, m.base_g, m.metallic), mix(m.ior_f0, m.base_b, m.metallic)};

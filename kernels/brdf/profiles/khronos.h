@@ -32,8 +32,7 @@ BRDF_FN rgbw brdf_profile(const material_lanes m, vec3w L, vec3w V, vec3w Lc, ve
     sheen_albedo_row row = E_SheenAlbedoRow(e_size, m.sheen_roughness);
     realw sh = min(1.0f - m.sheen_max * E_SheenAlbedo(tables, e_size, row, g.NdotV),
                    1.0f - m.sheen_max * E_SheenAlbedo(tables, e_size, row, g.NdotL));
-    diffuse = rgbw_scale(diffuse, sh);
-    specular = rgbw_scale(specular, sh);
+    scale_base(&diffuse, &specular, sh);
   }
 #endif
   realw coat = 0.0f;
@@ -44,9 +43,7 @@ BRDF_FN rgbw brdf_profile(const material_lanes m, vec3w L, vec3w V, vec3w Lc, ve
     realw C = D_GGX_HalfAngle(gc.sin2, gc.cos2, m.clearcoat_alpha) * 0.5f /
               Lambda_SmithSum(gc.NdotL, gc.NdotV, m.clearcoat_alpha);
     realw k = 1.0f - m.clearcoat * Fc;
-    diffuse = rgbw_scale(diffuse, k);
-    specular = rgbw_scale(specular, k);
-    sheen = rgbw_scale(sheen, k);
+    scale_below(&diffuse, &specular, &sheen, k);
     /* Only materials with the extension evaluate the coat: at r_c = 0, C is 0/0 at N.H = 1. */
     coat = select((realw)(0.0f), m.clearcoat * Fc * C, m.clearcoat > 0.0f);
   }

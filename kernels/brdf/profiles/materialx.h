@@ -40,8 +40,7 @@ BRDF_FN rgbw brdf_profile(const material_lanes m, vec3w L, vec3w V, vec3w Lc, ve
   {
     sheen = sheen_coloured(m, D_Charlie(g.sin2, g.cos2, max(m.sheen_alpha, 0.005f)) * V_Ashikhmin(g.NdotL, g.NdotV));
     realw t_s = 1.0f - m.sheen_max * E_SheenMaterialX(g.NdotV, m.sheen_alpha);
-    diffuse = rgbw_scale(diffuse, t_s);
-    specular = rgbw_scale(specular, t_s);
+    scale_base(&diffuse, &specular, t_s);
   }
 #endif
   realw coat = 0.0f;
@@ -53,9 +52,7 @@ BRDF_FN rgbw brdf_profile(const material_lanes m, vec3w L, vec3w V, vec3w Lc, ve
     realw Fc = F_Dielectric(gc.VdotH, 1.5f);
     realw comp_c = comp_MaterialX(Fc, Ac + Bc);
     realw t_c = 1.0f - m.clearcoat * (0.04f * Ac + Bc) * comp_c;
-    diffuse = rgbw_scale(diffuse, t_c);
-    specular = rgbw_scale(specular, t_c);
-    sheen = rgbw_scale(sheen, t_c);
+    scale_below(&diffuse, &specular, &sheen, t_c);
     coat = m.clearcoat * D_GGX_HalfAngle(gc.sin2, gc.cos2, m.clearcoat_alpha) * 0.5f /
            Lambda_SmithSum(gc.NdotL, gc.NdotV, m.clearcoat_alpha) * Fc * comp_c;
   }

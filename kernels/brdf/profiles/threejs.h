@@ -29,8 +29,7 @@ BRDF_FN rgbw brdf_profile(const material_lanes m, vec3w L, vec3w V, vec3w Lc, ve
   {
     sheen = sheen_coloured(m, D_CharlieFloored(g.sin2, g.cos2, m.sheen_alpha) * min(V_Ashikhmin(g.NdotL, g.NdotV), 1.0f));
     realw sh = 1.0f - m.sheen_max * max(E_SheenThreeJs(g.NdotV, m.sheen_roughness), E_SheenThreeJs(g.NdotL, m.sheen_roughness));
-    diffuse = rgbw_scale(diffuse, sh);
-    specular = rgbw_scale(specular, sh);
+    scale_base(&diffuse, &specular, sh);
   }
 #endif
   realw coat = 0.0f;
@@ -42,8 +41,7 @@ BRDF_FN rgbw brdf_profile(const material_lanes m, vec3w L, vec3w V, vec3w Lc, ve
               D_GGX_HalfAngle(gc.sin2, gc.cos2, m.clearcoat_alpha) * 0.5f /
               max(Lambda_SmithSum(gc.NdotL, gc.NdotV, m.clearcoat_alpha), 1e-6f);
     realw k = 1.0f - m.clearcoat * Fcc;
-    diffuse = rgbw_scale(diffuse, k);
-    specular = rgbw_scale(specular, k);
+    scale_base(&diffuse, &specular, k);
     coat = m.clearcoat * C; /* TSL finish(): the sheen is added after this, unattenuated */
   }
 #endif
