@@ -31,7 +31,7 @@ from ._core import Error
 
 __all__ = [
     "Error", "BrdfclWarning", "Evaluator", "devices", "evaluate", "evaluate_grid", "albedo", "lut",
-    "render", "shade", "read_gbuffer", "write_gbuffer", "LOBES", "PROFILES", "LUT_KINDS",
+    "render", "shade", "read_gbuffer", "write_gbuffer", "read_exr", "LOBES", "PROFILES", "LUT_KINDS",
 ]
 __version__ = "0.1.0"
 
@@ -113,7 +113,7 @@ def _index(material_index: Any, n: int, count: int) -> Optional[np.ndarray]:
         bad = ~(np.isfinite(idx) & (np.floor(idx) == idx) & (idx >= 0))
         if bad.any():
             row = int(np.argmax(bad))
-            raise Error(f"row {row}: material index {idx[row]!r} is not a non-negative integer")
+            raise Error(f"row {row}: material index {float(idx[row]):g} is not a non-negative integer")
         idx = idx.astype(np.int64)
     elif idx.dtype.kind == "u":
         if idx.size and idx.max() > np.iinfo(np.int64).max:
@@ -188,7 +188,7 @@ class Evaluator:
             raise Error(f"cos_theta_v must be a number or a 1-D array of numbers, got shape {tuple(mus.shape)}")
         bad = ~(np.isfinite(mus) & (mus >= 0.0) & (mus <= 1.0))
         if bad.any():
-            raise Error(f"cos_theta_v must lie in [0, 1] (N.V), got {mus[int(np.argmax(bad))]!r}")
+            raise Error(f"cos_theta_v must lie in [0, 1] (N.V), got {float(mus[int(np.argmax(bad))]):g}")
         out = self._device.albedo(m, mus.astype(np.float32).tolist(), opts)
         scalar = np.ndim(cos_theta_v) == 0
         result = {}
@@ -430,6 +430,12 @@ def read_gbuffer(path: PathLike, *, check: bool = True) -> Dict[str, Any]:
     "camera" (a dict) when the file has one. N is the world-space normal (the +Z of each pixel's
     shading frame); V points towards the viewer. check: the CLI's range checks."""
     return _core.gbuffer_to_dict(_core.read_gbuffer(os.fspath(path), bool(check)))
+
+
+def read_exr(path: PathLike) -> np.ndarray:
+    """Reads an RGB OpenEXR image (e.g. `brdfcl render --out x.exr`) as float32 (H, W, 3)
+    linear values, rows from the top."""
+    return _core.read_exr(os.fspath(path))
 
 
 def write_gbuffer(path: PathLike, channels: Mapping[str, Any], *, half: bool = False) -> None:

@@ -23,6 +23,7 @@
 #include "brdfcl/error.hpp"
 #include "brdfcl/evaluator.hpp"
 #include "brdfcl/gbuffer.hpp"
+#include "brdfcl/image.hpp"
 #include "brdfcl/io.hpp"
 #include "brdfcl/lut.hpp"
 #include "brdfcl/material.hpp"
@@ -450,6 +451,15 @@ NB_MODULE(_core, m) {
     nb::gil_scoped_release release;
     brdfcl::writeGBuffer(path, g, half);
   }, "path"_a, "gbuffer"_a, "half"_a);
+
+  m.def("read_exr", [](const std::string& path) {
+    brdfcl::Image img;
+    {
+      nb::gil_scoped_release release;
+      img.rgb = brdfcl::readExrRgb(path, img.width, img.height);
+    }
+    return imageToNumpy(std::move(img));
+  }, "path"_a);
 
   nb::class_<brdfcl::Scene>(m, "Scene");
   m.def("read_scene", &brdfcl::readScene, "path"_a);
