@@ -4,7 +4,7 @@ PRESET ?= release
 JOBS ?= $(shell nproc)
 FUZZ_SECONDS ?= 60
 
-.PHONY: deps configure build test test-asan fuzz demo bench bench-peers clean
+.PHONY: deps configure build test test-python test-asan fuzz demo bench bench-peers clean
 
 deps:
 	@scripts/install-deps
@@ -15,8 +15,21 @@ configure: deps
 build: configure
 	@cmake --build --preset $(PRESET) -j $(JOBS)
 
+# The C++ tests, then the Python package's (tests/python) in build/venv-python: pinned build
+# and test tools (python/requirements.txt), the package built by `pip install .` into a persistent
+# build dir (build/python-<tag>/: only what changed recompiles).
+PYTHON ?= /usr/bin/python3
+VENV := build/venv-python
+
 test: build
 	@build/bin/brdfcl-tests --gtest_brief=1
+	@$(MAKE) --no-print-directory test-python
+
+test-python: build
+	@test -x $(VENV)/bin/python || $(PYTHON) -m venv $(VENV)
+	@$(VENV)/bin/python -m pip install -q --disable-pip-version-check -r python/requirements.txt
+	@CMAKE_BUILD_PARALLEL_LEVEL=$(JOBS) $(VENV)/bin/python -m pip install -q --disable-pip-version-check --no-build-isolation .
+	@BRDFCL_CLI=$(CURDIR)/build/bin/brdfcl $(VENV)/bin/python -m pytest -q tests/python
 
 # The host code and tests under AddressSanitizer + UndefinedBehaviorSanitizer (build-asan/).
 test-asan: deps

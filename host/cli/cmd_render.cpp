@@ -22,6 +22,7 @@
 #include "brdfcl/image_diff.hpp"
 #include "brdfcl/io.hpp"
 #include "brdfcl/render.hpp"
+#include "brdfcl/render_job.hpp"
 #include "commands.hpp"
 #include "host/src/io/output.hpp"
 
@@ -33,11 +34,6 @@ void parseSize(const std::string& s, int& w, int& h) {
   if (std::sscanf(s.c_str(), "%dx%d%n", &w, &h, &n) != 2 || n != int(s.size()) || w < 1 || h < 1 || w > 16384 ||
       h > 16384)
     throw Error(fmt::format("--size '{}' is not WIDTHxHEIGHT with sides 1 to 16384, e.g. 768x768", s));
-}
-
-Scene builtinScene(const std::string& name) {
-  if (name != "spheres") throw Error(fmt::format("unknown built-in scene '{}'; use spheres", name));
-  return spheresScene();
 }
 
 std::string lowerExtension(const std::string& path) {
@@ -71,9 +67,7 @@ void checkOneStdout(std::initializer_list<std::pair<const char*, const std::stri
     throw Error(fmt::format("{} all write to stdout ('-'); give at most one of them '-'", fmt::join(dashes, " and ")));
 }
 
-void checkSpp(int spp) {
-  if (spp < 1 || spp > 1024) throw Error(fmt::format("--spp {} is out of range; use 1 to 1024", spp));
-}
+void checkSpp(int spp) { checkRenderSpp(spp); }
 
 void writeImages(const Image& img, const std::string& exr, const std::string& png, float exposure) {
   if (!exr.empty()) writeExrRgb(exr, img.width, img.height, img.rgb);
@@ -100,24 +94,18 @@ struct GltfArgs {
   }
 };
 
-struct LoadedAsset {
-  gltf::Asset asset;
-  gltf::View view;
-  int width = 0, height = 0;
-};
+using LoadedAsset = FramedAsset;
 
+// The asset framed as the library frames it for renderJob (brdfcl/render_job.hpp).
 LoadedAsset loadAsset(const GltfArgs& a) {
   gltf::LoadOptions options;
   options.scene = a.scene;
   options.variant = a.variant;
   options.strict = a.strict;
-  LoadedAsset l{gltf::load(a.path, options), {}, 0, 0};
-  for (const auto& w : l.asset.warnings) printWarning(w);
-  if (a.size.empty())
-    gltf::defaultSize(l.asset, a.camera, l.width, l.height);
-  else
-    parseSize(a.size, l.width, l.height);
-  l.view = gltf::chooseView(l.asset, a.camera, l.width, l.height);
+  int w = 0, h = 0;
+  if (!a.size.empty()) parseSize(a.size, w, h);
+  LoadedAsset l = loadFramedAsset(a.path, options, a.camera, w, h);
+  for (const auto& warning : l.asset.warnings) printWarning(warning);
   return l;
 }
 
@@ -211,11 +199,9 @@ struct ProfileArgs {
 
 Image renderGltf(Runtime& rt, const LoadedAsset& l, const Scene& lighting, int spp, const std::string& gbufferOut,
                  const ShadeOptions& shadeOptions = {}, const EvalOptions& model = {}) {
-  gltf::Raycaster raycaster(l.asset);
-  Shader shader(rt, lighting, model);
+  const gltf::Raycaster raycaster(l.asset);
   ShadeStats stats;
-  const Image img = gltf::renderFrame(shader, raycaster, l.view, l.width, l.height, spp, progressLine("brdfcl render", "sample"),
-                                      shadeOptions, &stats);
+  const Image img = renderFramedAsset(rt, l, raycaster, lighting, spp, shadeOptions, model, progressLine("brdfcl render", "sample"), &stats);
   if (shadeOptions.ibl == IblMode::Exact) std::fprintf(stderr, "%s\n", exactIblSummary(stats).c_str());
   if (!gbufferOut.empty()) writeGBuffer(gbufferOut, raycaster.trace(l.view, l.width, l.height));
   return img;

@@ -47,6 +47,12 @@ struct Samples {
   std::size_t size() const { return L.size() / 3; }
 };
 
+// How every reader of directions normalizes one (the samples files, evaluateArrays): in double,
+// dividing by the largest component first so that no finite vector overflows or underflows,
+// then rounding each component to float. Returns false (leaving dst alone) for zero length.
+// The inputs must be finite.
+bool normalizeDirection(const double* d, float* dst);
+
 // CSV whose header names the columns material,Lx,Ly,Lz,Vx,Vy,Vz in any order (material may be
 // absent when materialColumnOptional), or .npy float32/float64 of shape (N,7) or (N,6) in that
 // column order, chosen by the extension (.npy, any case). Path "-" is stdin ("<stdin>" in

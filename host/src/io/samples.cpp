@@ -154,19 +154,7 @@ class RowChecker {
   }
 
  private:
-  // Dividing by the largest component first keeps x*x+y*y+z*z from overflowing (1e200) or
-  // underflowing (1e-200) in double: the scaled length lies in [1, sqrt(3)], so every finite
-  // non-zero vector normalizes and zero length is the only failure.
-  static bool normalize(const double* d, float* dst) {
-    const double m = std::max({std::fabs(d[0]), std::fabs(d[1]), std::fabs(d[2])});
-    if (!(m > 0.0)) return false;
-    const double x = d[0] / m, y = d[1] / m, z = d[2] / m;
-    const double len = std::sqrt(x * x + y * y + z * z);
-    dst[0] = static_cast<float>(x / len);
-    dst[1] = static_cast<float>(y / len);
-    dst[2] = static_cast<float>(z / len);
-    return true;
-  }
+  static bool normalize(const double* d, float* dst) { return normalizeDirection(d, dst); }
 
   static std::string direction(const char* which, const double*) { return std::string(which) + " has zero length"; }
 
@@ -807,6 +795,20 @@ class NpyReader {
 };
 
 }  // namespace
+
+// Dividing by the largest component first keeps x*x+y*y+z*z from overflowing (1e200) or
+// underflowing (1e-200) in double: the scaled length lies in [1, sqrt(3)], so every finite
+// non-zero vector normalizes and zero length is the only failure.
+bool normalizeDirection(const double* d, float* dst) {
+  const double m = std::max({std::fabs(d[0]), std::fabs(d[1]), std::fabs(d[2])});
+  if (!(m > 0.0)) return false;
+  const double x = d[0] / m, y = d[1] / m, z = d[2] / m;
+  const double len = std::sqrt(x * x + y * y + z * z);
+  dst[0] = static_cast<float>(x / len);
+  dst[1] = static_cast<float>(y / len);
+  dst[2] = static_cast<float>(z / len);
+  return true;
+}
 
 struct SampleStream::Impl {
   Source source;

@@ -1,0 +1,146 @@
+// evaluateArrays / evaluateGridArrays (brdfcl/arrays.hpp): in-memory directions are checked and
+// normalized a chunk at a time straight into a SoaBatch's planes (or a grid chunk), on several
+// threads, with normalizeDirection, the samples readers' own function: the same bits as `brdfcl eval`.
+#include "brdfcl/arrays.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include <fmt/format.h>
+
+#include "brdfcl/error.hpp"
+#include "brdfcl/io.hpp"
+#include "io/messages.hpp"
+#include "io/rows.hpp"
+
+namespace brdfcl {
+
+namespace {
+
+constexpr std::size_t kDefaultChunk = std::size_t(1) << 20;  // StreamOptions::kDefaultChunk, as the CLI
+
+// Row i of a direction array, widened to double as the NPY reader widens each element.
+inline void loadRow(const DirectionArray& a, std::size_t i, double* d) {
+  if (a.type == DirectionArray::Type::Float32) {
+    const float* p = static_cast<const float*>(a.data) + 3 * i;
+    d[0] = p[0], d[1] = p[1], d[2] = p[2];
+  } else {
+    const double* p = static_cast<const double*>(a.data) + 3 * i;
+    d[0] = p[0], d[1] = p[1], d[2] = p[2];
+  }
+}
+
+// The first problem of one worker's rows (the readers' wording, row numbers 0-based).
+struct RowError {
+  std::size_t row = 0;
+  std::string message;
+};
+
+// Checks and normalizes rows [first, first + count) into L[3], V[3] written by `store(i, L, V)`
+// (i relative to first), on several threads; throws the lowest row's problem.
+template <class Store>
+void normalizeRows(const ArraySamples& s, std::size_t first, std::size_t count, std::size_t materialCount,
+                   bool checkMaterial, Store&& store) {
+  static const char* const kNames[6] = {"Lx", "Ly", "Lz", "Vx", "Vy", "Vz"};
+  const std::size_t workers = detail::workerCount(count * 48);
+  std::vector<RowError> errors(workers);
+  detail::parallelFor(workers, [&](std::size_t w) {
+    const std::size_t begin = count * w / workers, end = count * (w + 1) / workers;
+    for (std::size_t k = begin; k < end; ++k) {
+      const std::size_t row = first + k;
+      double d[6];
+      loadRow(s.L, row, d);
+      loadRow(s.V, row, d + 3);
+      auto fail = [&](std::string m) {
+        errors[w].row = row;
+        errors[w].message = std::move(m);
+      };
+      if (checkMaterial && s.material) {
+        const std::int64_t m = s.material[row];
+        if (m < 0) return fail(fmt::format("material index {} is not a non-negative integer", m));
+        if (std::uint64_t(m) >= materialCount)
+          return fail(fmt::format("material index {} out of range ({} {})", m, materialCount,
+                                  materialCount == 1 ? "material" : "materials"));
+      }
+      for (int c = 0; c < 6; ++c)
+        if (!std::isfinite(d[c]))
+          return fail(std::string("field '") + kNames[c] + "' is not finite: " + detail::formatNumber(d[c]));
+      float L[3], V[3];
+      if (!normalizeDirection(d, L)) return fail("L has zero length");
+      if (!normalizeDirection(d + 3, V)) return fail("V has zero length");
+      store(k, L, V);
+    }
+  });
+  for (const auto& e : errors)  // workers hold ascending ranges: the first error is the lowest row
+    if (!e.message.empty()) throw Error(fmt::format("row {}: {}", e.row, e.message));
+}
+
+void checkArrays(const ArraySamples& s) {
+  if (s.count > 0 && (!s.L.data || !s.V.data)) throw Error("internal: direction arrays without data", 3);
+}
+
+}  // namespace
+
+void evaluateArrays(Evaluator& evaluator, const std::vector<MaterialParams>& materials, const ArraySamples& s,
+                    float* rgb, std::size_t chunk) {
+  checkArrays(s);
+  if (materials.empty()) throw Error("no materials to evaluate");
+  if (!s.material && materials.size() != 1)
+    throw Error(fmt::format("{} materials but no material index; give one index per sample", materials.size()));
+  if (chunk == 0) chunk = kDefaultChunk;
+  SoaBatch batch(evaluator, materials, std::min(std::max<std::size_t>(std::min(chunk, s.count), 1), evaluator.launchLimit()));
+  const std::size_t cap = batch.capacity();
+  for (std::size_t first = 0; first < s.count; first += cap) {
+    const std::size_t count = std::min(cap, s.count - first);
+    float* planes[6];
+    for (int k = 0; k < 6; ++k) planes[k] = batch.direction(k);
+    std::uint32_t* index = batch.materialIndex();
+    // Clear what a previous, longer run left behind past `count` (padding lanes give f = 0).
+    if (count < cap) {
+      for (auto* p : planes) std::fill(p + count, p + cap, 0.0f);
+      std::fill(index + count, index + cap, 0u);
+    }
+    normalizeRows(s, first, count, materials.size(), true, [&](std::size_t i, const float* L, const float* V) {
+      for (int c = 0; c < 3; ++c) {
+        planes[c][i] = L[c];
+        planes[3 + c][i] = V[c];
+      }
+      index[i] = s.material ? std::uint32_t(s.material[first + i]) : 0u;
+    });
+    batch.setCount(count);
+    batch.run();
+    const float* r[3] = {batch.result(0), batch.result(1), batch.result(2)};
+    float* out = rgb + 3 * first;
+    for (std::size_t i = 0; i < count; ++i) {
+      out[3 * i] = r[0][i];
+      out[3 * i + 1] = r[1][i];
+      out[3 * i + 2] = r[2][i];
+    }
+  }
+}
+
+void evaluateGridArrays(Evaluator& evaluator, const std::vector<MaterialParams>& materials, const ArraySamples& s,
+                        float* rgb, std::size_t chunk) {
+  checkArrays(s);
+  if (materials.empty()) throw Error("no materials to evaluate");
+  if (chunk == 0) chunk = kDefaultChunk;
+  const std::size_t n = s.count, nm = materials.size();
+  Samples dirs;
+  for (std::size_t first = 0; first < n; first += chunk) {
+    const std::size_t count = std::min(chunk, n - first);
+    dirs.L.resize(3 * count);
+    dirs.V.resize(3 * count);
+    normalizeRows(s, first, count, nm, false, [&](std::size_t i, const float* L, const float* V) {
+      std::copy(L, L + 3, &dirs.L[3 * i]);
+      std::copy(V, V + 3, &dirs.V[3 * i]);
+    });
+    // Every material's rows of this chunk of directions: bit-identical to the whole grid's.
+    const std::vector<float> part = evaluator.evaluateGrid(materials, dirs);
+    for (std::size_t m = 0; m < nm; ++m)
+      std::copy(part.begin() + std::ptrdiff_t(3 * m * count), part.begin() + std::ptrdiff_t(3 * (m + 1) * count),
+                rgb + 3 * (m * n + first));
+  }
+}
+
+}  // namespace brdfcl

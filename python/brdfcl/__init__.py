@@ -1,0 +1,444 @@
+"""brdfcl: f(L, V) of glTF 2.0 materials (metallic-roughness + KHR sheen, clearcoat, anisotropy)
+on an OpenCL device, for numpy arrays; look-up tables and renders as arrays.
+
+Conventions (every function): directions live in the shading frame N = +Z, T = +X, B = +Y;
+L points from the surface towards the light, V towards the viewer; f is the BRDF in 1/sr
+*without* the cosine N.L. Directions need not be unit length: each row is normalized as
+`brdfcl eval` normalizes its samples (in double, dividing by the largest component first, then
+rounded to float32), so the results equal the CLI's bit for bit. A direction at or below the
+horizon gives f = 0.
+
+Errors raise brdfcl.Error (a ValueError) carrying the CLI's message. The GIL is released while
+the device works; calls from several threads are safe.
+
+This file is the pure-Python front (argument checks and conversions, docstrings); the work is
+done by brdfcl._core, the nanobind module on the C++ host library. Plots will live in
+brdfcl/plot.py (brdfcl.plot), a separate task.
+"""
+from __future__ import annotations
+
+import json
+import math
+import os
+import threading
+import warnings
+from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple, Union
+
+import numpy as np
+
+from . import _core
+from ._core import Error
+
+__all__ = [
+    "Error", "BrdfclWarning", "Evaluator", "devices", "evaluate", "evaluate_grid", "albedo", "lut",
+    "render", "shade", "read_gbuffer", "write_gbuffer", "read_exr", "LOBES", "PROFILES", "LUT_KINDS",
+]
+__version__ = "0.1.0"
+
+LOBES = ("all", "diffuse", "specular", "sheen", "clearcoat")
+PROFILES = ("spec", "khronos", "threejs", "filament", "babylon", "materialx")
+LUT_KINDS = ("sheen-e", "ggx-dfg", "charlie-dfg")
+
+PathLike = Union[str, "os.PathLike[str]"]
+MaterialsLike = Union[PathLike, Mapping[str, Any], Sequence[Mapping[str, Any]]]
+
+
+class BrdfclWarning(UserWarning):
+    """A warning of the materials or glTF reader (an unknown key, an ignored extension): the
+    CLI prints these as "brdfcl: warning: ..."."""
+
+
+def _warn(lines: Sequence[str]) -> None:
+    for line in lines:
+        warnings.warn(line, BrdfclWarning, stacklevel=4)
+
+
+def _materials(materials: Any, strict: bool) -> "_core.Materials":
+    """The materials as the CLI's --materials reader reads them (KHR_materials_ior included)."""
+    if isinstance(materials, _core.Materials):
+        return materials
+    if isinstance(materials, (str, os.PathLike)):
+        m = _core.read_materials(os.fspath(materials), bool(strict))
+    else:
+        if isinstance(materials, Mapping):
+            doc = materials if "materials" in materials else {"materials": [materials]}
+        elif isinstance(materials, (list, tuple)):
+            doc = {"materials": list(materials)}
+        else:
+            raise Error(
+                "materials must be a glTF material dict, a list of them, a dict with \"materials\" or a "
+                f"path to a JSON file, got {type(materials).__name__}")
+        try:
+            text = json.dumps(doc, allow_nan=False, default=_json_default)
+        except ValueError:
+            raise Error("<materials>: NaN and infinities are not valid material values (JSON has none); "
+                        "use numbers in the glTF ranges") from None
+        m = _core.parse_materials(text, "<materials>", bool(strict))
+    _warn(m.warnings)
+    return m
+
+
+def _json_default(o: Any) -> Any:
+    # numpy scalars and arrays in material dicts (np.float32(0.5), np.array([1, 0, 0])).
+    if isinstance(o, np.generic):
+        return o.item()
+    if isinstance(o, np.ndarray):
+        return o.tolist()
+    raise TypeError(f"{type(o).__name__} is not a JSON value")
+
+
+def _directions(a: Any, name: str) -> np.ndarray:
+    """(N, 3) float32 or float64, C-contiguous and native: such arrays are used as they are (no
+    copy); other number types are converted to float64 (exact for every integer up to 2**53)."""
+    arr = np.asarray(a)
+    if arr.dtype != np.float32 and arr.dtype != np.float64:
+        if arr.dtype.kind not in "fiu":
+            raise Error(f"{name} must hold real numbers (float32 or float64), got dtype {arr.dtype}")
+        arr = arr.astype(np.float64)
+    if arr.ndim != 2 or arr.shape[1] != 3:
+        raise Error(f"{name} must have shape (N, 3), got {tuple(arr.shape)}")
+    return np.ascontiguousarray(arr)
+
+
+def _index(material_index: Any, n: int, count: int) -> Optional[np.ndarray]:
+    if material_index is None:
+        if count != 1:
+            raise Error(f"{count} materials but no material_index; give one index per sample "
+                        "(an int array of shape (N,))")
+        return None
+    idx = np.asarray(material_index)
+    if idx.ndim != 1:
+        raise Error(f"material_index must have shape (N,), got {tuple(idx.shape)}")
+    if idx.dtype.kind == "f":
+        bad = ~(np.isfinite(idx) & (np.floor(idx) == idx) & (idx >= 0))
+        if bad.any():
+            row = int(np.argmax(bad))
+            raise Error(f"row {row}: material index {float(idx[row]):g} is not a non-negative integer")
+        idx = idx.astype(np.int64)
+    elif idx.dtype.kind == "u":
+        if idx.size and idx.max() > np.iinfo(np.int64).max:
+            row = int(np.argmax(idx > np.iinfo(np.int64).max))
+            raise Error(f"row {row}: material index {int(idx[row])} out of range ({count} materials)")
+        idx = idx.astype(np.int64)
+    elif idx.dtype.kind != "i":
+        raise Error(f"material_index must hold integers, got dtype {idx.dtype}")
+    return np.ascontiguousarray(idx, dtype=np.int64)
+
+
+class Evaluator:
+    """One OpenCL device and the programs compiled for it (kept between calls).
+
+    device: None ($BRDFCL_DEVICE, then device 0), an index into brdfcl.devices(), or a
+    substring of a device name, as the CLI's --device. The methods are the module-level
+    functions without their `device` argument; one Evaluator may be used from several threads.
+    Conventions: N = +Z, L towards the light, V towards the viewer, f without the cosine.
+    """
+
+    def __init__(self, device: Union[None, int, str] = None):
+        self._device = _core.Device("" if device is None else str(device))
+
+    @property
+    def device(self) -> Dict[str, Any]:
+        """The device's description (the keys of brdfcl.devices())."""
+        return self._device.info
+
+    def __repr__(self) -> str:
+        return f"brdfcl.Evaluator({self.device['name']!r})"
+
+    def evaluate(self, materials: MaterialsLike, L: Any, V: Any, material_index: Any = None, *,
+                 lobe: str = "all", sheen_visibility: str = "charlie", sheen_distribution: str = "charlie",
+                 sheen_scaling: str = "min", profile: str = "spec", strict: bool = False) -> np.ndarray:
+        """f(L, V) per sample: float32 (N, 3) rgb in 1/sr, no cosine. See brdfcl.evaluate."""
+        opts = _core.eval_options(lobe, sheen_visibility, sheen_distribution, sheen_scaling, profile)
+        m = _materials(materials, strict)
+        Ld, Vd = _directions(L, "L"), _directions(V, "V")
+        if Ld.shape[0] != Vd.shape[0]:
+            raise Error(f"L and V must have the same number of rows, got {Ld.shape[0]} and {Vd.shape[0]}")
+        idx = _index(material_index, Ld.shape[0], len(m))
+        if idx is not None and idx.shape[0] != Ld.shape[0]:
+            raise Error(f"material_index must have one entry per sample: {idx.shape[0]} for {Ld.shape[0]} samples")
+        out = np.empty((Ld.shape[0], 3), dtype=np.float32)
+        self._device.evaluate(m, Ld, Vd, idx, out, opts)
+        return out
+
+    def evaluate_grid(self, materials: MaterialsLike, L: Any, V: Any, *, lobe: str = "all",
+                      sheen_visibility: str = "charlie", sheen_distribution: str = "charlie",
+                      sheen_scaling: str = "min", profile: str = "spec", strict: bool = False) -> np.ndarray:
+        """Every material x every direction pair: float32 (M, N, 3). See brdfcl.evaluate_grid."""
+        opts = _core.eval_options(lobe, sheen_visibility, sheen_distribution, sheen_scaling, profile)
+        m = _materials(materials, strict)
+        Ld, Vd = _directions(L, "L"), _directions(V, "V")
+        if Ld.shape[0] != Vd.shape[0]:
+            raise Error(f"L and V must have the same number of rows, got {Ld.shape[0]} and {Vd.shape[0]}")
+        out = np.empty((len(m), Ld.shape[0], 3), dtype=np.float32)
+        self._device.evaluate_grid(m, Ld, Vd, out, opts)
+        return out
+
+    def albedo(self, material: MaterialsLike, cos_theta_v: Any, *, sheen_visibility: str = "charlie",
+               sheen_distribution: str = "charlie", sheen_scaling: str = "min", profile: str = "spec",
+               strict: bool = False) -> Dict[str, np.ndarray]:
+        """Directional albedo per lobe. See brdfcl.albedo."""
+        opts = _core.eval_options("all", sheen_visibility, sheen_distribution, sheen_scaling, profile)
+        single = isinstance(material, Mapping) and "materials" not in material
+        m = _materials(material, strict)
+        if len(m) == 0:
+            raise Error("albedo: no materials given")
+        mus = np.atleast_1d(np.asarray(cos_theta_v, dtype=np.float64))
+        if mus.ndim != 1 or mus.size == 0:
+            raise Error(f"cos_theta_v must be a number or a 1-D array of numbers, got shape {tuple(mus.shape)}")
+        bad = ~(np.isfinite(mus) & (mus >= 0.0) & (mus <= 1.0))
+        if bad.any():
+            raise Error(f"cos_theta_v must lie in [0, 1] (N.V), got {float(mus[int(np.argmax(bad))]):g}")
+        out = self._device.albedo(m, mus.astype(np.float32).tolist(), opts)
+        scalar = np.ndim(cos_theta_v) == 0
+        result = {}
+        for name, a in out.items():
+            if single:
+                a = a[0]
+            if scalar:
+                a = a[..., 0, :]
+            result[name] = a
+        return result
+
+    def lut(self, kind: str, size: int = 128, *, sheen_visibility: Optional[str] = None,
+            sheen_distribution: Optional[str] = None) -> np.ndarray:
+        """A baked look-up table. See brdfcl.lut."""
+        if kind in ("ggx-dfg", "charlie-dfg"):
+            for name, value in (("sheen_visibility", sheen_visibility), ("sheen_distribution", sheen_distribution)):
+                if value is not None:
+                    raise Error(f"{name} applies to kind 'sheen-e' only; drop it for kind '{kind}'")
+        if isinstance(size, bool) or not isinstance(size, (int, np.integer)):
+            raise Error(f"size must be an integer from 2 to 4096, got {size!r}")
+        return self._device.lut(kind, int(size), sheen_visibility or "charlie", sheen_distribution or "charlie")
+
+    def render(self, gltf: Optional[PathLike] = None, scene: Optional[str] = None, *,
+               size: Optional[Tuple[int, int]] = None, camera: Union[None, int, str] = None,
+               spp: Optional[int] = None, environment: Optional[PathLike] = None,
+               env_intensity: Optional[float] = None, env_rotation: Optional[float] = None,
+               lights: PathLike = "gltf", profile: str = "spec", ibl: str = "split-sum",
+               ibl_samples: Optional[int] = None, gltf_scene: Optional[int] = None,
+               variant: Optional[str] = None, strict: bool = False) -> np.ndarray:
+        """A rendered image, float32 (H, W, 3) linear radiance. See brdfcl.render."""
+        job = _core.RenderJob()
+        if gltf is not None:
+            if scene is not None:
+                raise Error("scene and gltf are alternatives; give one")
+            job.gltf = os.fspath(gltf)
+        else:
+            job.scene = "spheres" if scene is None else str(scene)
+        if size is not None:
+            try:
+                w, h = size
+                job.width, job.height = _int(w, "size"), _int(h, "size")
+            except (TypeError, ValueError):
+                raise Error(f"size must be (width, height) with sides 1 to 16384, e.g. (768, 768), got {size!r}") from None
+            if not (1 <= job.width <= 16384 and 1 <= job.height <= 16384):
+                raise Error(f"size must be (width, height) with sides 1 to 16384, e.g. (768, 768), got {size!r}")
+        if camera is not None:
+            job.camera = str(camera)
+        if spp is not None:
+            job.spp = _int(spp, "spp")
+            job.spp_given = True
+        job.environment_given = environment is not None or env_intensity is not None or env_rotation is not None
+        if environment is not None:
+            job.environment = os.fspath(environment)
+        if env_intensity is not None:
+            job.env_intensity = float(env_intensity)
+        if env_rotation is not None:
+            job.env_rotation = float(env_rotation)
+        job.lights = os.fspath(lights)
+        if gltf_scene is not None:
+            job.gltf_scene = _int(gltf_scene, "gltf_scene")
+        if variant is not None:
+            job.variant = str(variant)
+        job.strict = bool(strict)
+        job.set_profile(profile)
+        image, warns = self._device.render(job, ibl, 1024 if ibl_samples is None else _int(ibl_samples, "ibl_samples"),
+                                           ibl_samples is not None)
+        _warn(warns)
+        return image
+
+    def shade(self, gbuffer: Union[PathLike, Mapping[str, Any]], scene: Union[PathLike, Mapping[str, Any]], *,
+              profile: str = "spec", ibl: str = "split-sum", ibl_samples: int = 1024,
+              check: bool = True) -> np.ndarray:
+        """Deferred shading of a G-buffer: float32 (H, W, 3) linear radiance. See brdfcl.shade."""
+        g = _gbuffer(gbuffer, check)
+        if isinstance(scene, Mapping):
+            s = _core.parse_scene(json.dumps(scene, default=_json_default), "<scene>", os.getcwd())
+        elif isinstance(scene, (str, os.PathLike)):
+            s = _core.read_scene(os.fspath(scene))
+        else:
+            raise Error(f"scene must be a path to a scene JSON file or a dict (docs/gbuffer.md), got {type(scene).__name__}")
+        return self._device.shade(g, s, profile, ibl, _int(ibl_samples, "ibl_samples"))
+
+
+def _int(v: Any, name: str) -> int:
+    if isinstance(v, bool) or not isinstance(v, (int, np.integer)):
+        raise Error(f"{name} must be an integer, got {v!r}")
+    return int(v)
+
+
+def _gbuffer(gbuffer: Any, check: bool) -> "_core.GBuffer":
+    if isinstance(gbuffer, (str, os.PathLike)):
+        return _core.read_gbuffer(os.fspath(gbuffer), bool(check))
+    if isinstance(gbuffer, Mapping):
+        channels: Dict[str, Any] = {}
+        for k, v in gbuffer.items():
+            channels[str(k)] = v if k == "camera" else np.ascontiguousarray(v, dtype=np.float32)
+        return _core.gbuffer_from_dict(channels)
+    raise Error(f"gbuffer must be a path to a G-buffer EXR or a dict of channel arrays, got {type(gbuffer).__name__}")
+
+
+_default_lock = threading.Lock()
+_evaluators: Dict[str, Evaluator] = {}
+
+
+def _evaluator(device: Union[None, int, str, Evaluator]) -> Evaluator:
+    """The Evaluator of `device`, created on first use and kept (programs are compiled once)."""
+    if isinstance(device, Evaluator):
+        return device
+    key = "" if device is None else str(device)
+    with _default_lock:
+        ev = _evaluators.get(key)
+        if ev is None:
+            ev = _evaluators[key] = Evaluator(device)
+        return ev
+
+
+def devices() -> List[Dict[str, Any]]:
+    """The OpenCL devices of every platform, as `brdfcl devices` lists them: dicts with index,
+    name, platform, type, compute_units, opencl_c, max_alloc and global_mem (bytes)."""
+    return _core.devices()
+
+
+def evaluate(materials: MaterialsLike, L: Any, V: Any, material_index: Any = None, *, lobe: str = "all",
+             sheen_visibility: str = "charlie", sheen_distribution: str = "charlie", sheen_scaling: str = "min",
+             profile: str = "spec", strict: bool = False,
+             device: Union[None, int, str, Evaluator] = None) -> np.ndarray:
+    """f(L, V) of glTF materials per sample: float32 array (N, 3), rgb in 1/sr, without the cosine.
+
+    Conventions: shading frame N = +Z, T = +X, B = +Y; L (N, 3) points towards the light, V (N, 3)
+    towards the viewer; rows need not be unit length (normalized as `brdfcl eval` does, in double)
+    but must be finite and non-zero. C-contiguous float32 or float64 arrays are read in place (no
+    copy, whatever N); other number types are converted. Results equal `brdfcl eval` on the same
+    numbers bit for bit.
+
+    materials: one glTF material dict, a list of them, a dict with "materials" (a glTF document),
+      or a path to a .gltf/.glb/JSON file, read by the CLI's --materials reader
+      (pbrMetallicRoughness, KHR_materials_sheen, _clearcoat, _anisotropy, _ior). Unknown keys
+      warn (BrdfclWarning); strict=True makes them errors.
+    material_index: int array (N,) of indices into materials; required with more than one.
+    lobe: all|diffuse|specular|sheen|clearcoat. profile: spec|khronos|threejs|filament|babylon|
+      materialx (docs/profiles.md). sheen_visibility, sheen_distribution: charlie|ashikhmin;
+      sheen_scaling: min|view|none (spec profile only).
+    device: None (the default device, $BRDFCL_DEVICE then 0), an index, a name substring or an
+      Evaluator. Raises brdfcl.Error on a bad material, direction or option, naming it.
+    """
+    return _evaluator(device).evaluate(materials, L, V, material_index, lobe=lobe, sheen_visibility=sheen_visibility,
+                                       sheen_distribution=sheen_distribution, sheen_scaling=sheen_scaling,
+                                       profile=profile, strict=strict)
+
+
+def evaluate_grid(materials: MaterialsLike, L: Any, V: Any, *, lobe: str = "all", sheen_visibility: str = "charlie",
+                  sheen_distribution: str = "charlie", sheen_scaling: str = "min", profile: str = "spec",
+                  strict: bool = False, device: Union[None, int, str, Evaluator] = None) -> np.ndarray:
+    """f(L, V) of every material at every direction pair: float32 array (M, N, 3), rgb in 1/sr,
+    without the cosine; out[m, i] is material m at pair i (`brdfcl eval --grid`, bit for bit).
+
+    Conventions and arguments as brdfcl.evaluate (N = +Z, L towards the light, V towards the
+    viewer, f without the cosine); there is no material_index.
+    """
+    return _evaluator(device).evaluate_grid(materials, L, V, lobe=lobe, sheen_visibility=sheen_visibility,
+                                            sheen_distribution=sheen_distribution, sheen_scaling=sheen_scaling,
+                                            profile=profile, strict=strict)
+
+
+def albedo(material: MaterialsLike, cos_theta_v: Any, *, sheen_visibility: str = "charlie",
+           sheen_distribution: str = "charlie", sheen_scaling: str = "min", profile: str = "spec",
+           strict: bool = False, device: Union[None, int, str, Evaluator] = None) -> Dict[str, np.ndarray]:
+    """Directional albedo per lobe, as `brdfcl albedo`: the integral over the hemisphere of L of
+    f(L, V) N.L, by deterministic quadrature on the device.
+
+    Conventions: N = +Z, V in the XZ plane with N.V = cos_theta_v (a number or a 1-D array in
+    [0, 1]), L towards the light, f without the cosine (the integral applies N.L).
+    Returns {"diffuse", "specular", "sheen", "clearcoat", "all"} -> float32 RGB albedo of shape
+    (K, 3) for one material dict (K = len(cos_theta_v); (3,) for a scalar), (M, K, 3) for a list
+    or a file of M materials. Options as brdfcl.evaluate.
+    """
+    return _evaluator(device).albedo(material, cos_theta_v, sheen_visibility=sheen_visibility,
+                                     sheen_distribution=sheen_distribution, sheen_scaling=sheen_scaling,
+                                     profile=profile, strict=strict)
+
+
+def lut(kind: str, size: int = 128, *, sheen_visibility: Optional[str] = None,
+        sheen_distribution: Optional[str] = None, device: Union[None, int, str, Evaluator] = None) -> np.ndarray:
+    """A look-up table for engines, baked on the device as `brdfcl lut --kind KIND --size SIZE`.
+
+    kind: "sheen-e" (E of the white sheen lobe; sheen_visibility/sheen_distribution choose it),
+    "ggx-dfg" (A, B with F0 A + B the GGX directional albedo), "charlie-dfg". Returns float32
+    (size, size) for one channel, (size, size, 2) for ggx-dfg: lut[j, i] is the texel at
+    N.V = max(i / (size - 1), 1e-4), roughness = j / (size - 1), equal to the CLI's .npy.
+    Conventions: N = +Z, L towards the light, f without the cosine (the albedo integrals apply N.L).
+    """
+    return _evaluator(device).lut(kind, size, sheen_visibility=sheen_visibility,
+                                  sheen_distribution=sheen_distribution)
+
+
+def render(gltf: Optional[PathLike] = None, scene: Optional[str] = None, *, size: Optional[Tuple[int, int]] = None,
+           camera: Union[None, int, str] = None, spp: Optional[int] = None, environment: Optional[PathLike] = None,
+           env_intensity: Optional[float] = None, env_rotation: Optional[float] = None, lights: PathLike = "gltf",
+           profile: str = "spec", ibl: str = "split-sum", ibl_samples: Optional[int] = None,
+           gltf_scene: Optional[int] = None, variant: Optional[str] = None, strict: bool = False,
+           device: Union[None, int, str, Evaluator] = None) -> np.ndarray:
+    """Renders a glTF asset (gltf=PATH) or the built-in scene (scene="spheres", the default):
+    float32 (H, W, 3) linear radiance, rows from the top, equal to `brdfcl render --out x.exr`.
+
+    size: (width, height) (default 768x768 for the spheres; glTF: 1280x720 or the camera's aspect
+    at 720 rows). camera: glTF camera index or "auto". spp: glTF sub-pixel samples (default 4).
+    environment: builtin|sky|studio|uniform|FILE.hdr|FILE.exr, env_intensity, env_rotation
+    (radians about +Y). lights: gltf|none|SCENE.json. profile: as brdfcl.evaluate. ibl: split-sum
+    or exact (Monte Carlo, ibl_samples per pixel). gltf_scene, variant, strict: as the CLI's
+    --gltf-scene, --variant, --strict. The BRDF follows the conventions of brdfcl.evaluate
+    (N = +Z in each surface's frame, L towards the light, f without the cosine; the renderer
+    applies N.L).
+    """
+    return _evaluator(device).render(gltf, scene, size=size, camera=camera, spp=spp, environment=environment,
+                                     env_intensity=env_intensity, env_rotation=env_rotation, lights=lights,
+                                     profile=profile, ibl=ibl, ibl_samples=ibl_samples, gltf_scene=gltf_scene,
+                                     variant=variant, strict=strict)
+
+
+def shade(gbuffer: Union[PathLike, Mapping[str, Any]], scene: Union[PathLike, Mapping[str, Any]], *,
+          profile: str = "spec", ibl: str = "split-sum", ibl_samples: int = 1024, check: bool = True,
+          device: Union[None, int, str, Evaluator] = None) -> np.ndarray:
+    """Deferred shading of a G-buffer under a scene's lights and environment, as `brdfcl shade`:
+    float32 (H, W, 3) linear radiance.
+
+    gbuffer: a G-buffer EXR path (checked as the CLI checks it unless check=False) or a dict of
+    channel arrays as brdfcl.read_gbuffer returns (docs/gbuffer.md names: P, N, baseColor,
+    metallic, roughness, mask required; (H, W, 3) vectors, (H, W) scalars; optional "camera").
+    scene: a scene JSON path or the same JSON as a dict (docs/gbuffer.md, "Scene JSON").
+    Conventions: world-space N per pixel, L towards the light, V towards the viewer, f without
+    the cosine (the shader applies N.L).
+    """
+    return _evaluator(device).shade(gbuffer, scene, profile=profile, ibl=ibl, ibl_samples=ibl_samples, check=check)
+
+
+def read_gbuffer(path: PathLike, *, check: bool = True) -> Dict[str, Any]:
+    """Reads a G-buffer EXR (docs/gbuffer.md) into {channel: float32 array}: (H, W, 3) for the
+    vectors (P, N, T, V, clearcoatN, baseColor, emissive, sheenColor), (H, W) for the scalars, and
+    "camera" (a dict) when the file has one. N is the world-space normal (the +Z of each pixel's
+    shading frame); V points towards the viewer. check: the CLI's range checks."""
+    return _core.gbuffer_to_dict(_core.read_gbuffer(os.fspath(path), bool(check)))
+
+
+def read_exr(path: PathLike) -> np.ndarray:
+    """Reads an RGB OpenEXR image (e.g. `brdfcl render --out x.exr`) as float32 (H, W, 3)
+    linear values, rows from the top."""
+    return _core.read_exr(os.fspath(path))
+
+
+def write_gbuffer(path: PathLike, channels: Mapping[str, Any], *, half: bool = False) -> None:
+    """Writes {channel: array} (as read_gbuffer returns) as a G-buffer EXR, FLOAT (or HALF)
+    channels under their docs/gbuffer.md names, atomically. Conventions as read_gbuffer."""
+    _core.write_gbuffer(os.fspath(path), _gbuffer(channels, False), bool(half))
