@@ -48,9 +48,10 @@ struct Samples {
 };
 
 // How every reader of directions normalizes one (the samples files, evaluateArrays): in double,
-// dividing by the largest component first so that no finite vector overflows or underflows,
-// then rounding each component to float. Returns false (leaving dst alone) for zero length.
-// The inputs must be finite.
+// s = (x*x + y*y) + z*z, then each component times 1/sqrt(s), rounded to float; a vector whose s
+// would overflow or underflow is first scaled by a power of two (exact), so every finite
+// non-zero vector normalizes. Returns false (leaving dst alone) for zero length. The inputs must
+// be finite. io/directions.hpp has the vectorized form, which gives the same bits.
 bool normalizeDirection(const double* d, float* dst);
 
 // CSV whose header names the columns material,Lx,Ly,Lz,Vx,Vy,Vz in any order (material may be

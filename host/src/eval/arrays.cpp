@@ -1,16 +1,18 @@
 // evaluateArrays / evaluateGridArrays (brdfcl/arrays.hpp): in-memory directions are checked and
 // normalized a chunk at a time straight into a SoaBatch's planes (or a grid chunk), on several
-// threads, with normalizeDirection, the samples readers' own function: the same bits as `brdfcl eval`.
+// threads, by the samples readers' own arithmetic (io/directions.hpp): the same bits as `brdfcl eval`.
 #include "brdfcl/arrays.hpp"
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <string>
 
 #include <fmt/format.h>
 
 #include "brdfcl/error.hpp"
 #include "brdfcl/io.hpp"
+#include "io/directions.hpp"
 #include "io/messages.hpp"
 #include "io/rows.hpp"
 
@@ -37,39 +39,91 @@ struct RowError {
   std::string message;
 };
 
-// Checks and normalizes rows [first, first + count) into L[3], V[3] written by `store(i, L, V)`
-// (i relative to first), on several threads; throws the lowest row's problem.
-template <class Store>
+// Where normalized rows go: six planes (step 1, a SoaBatch) or two interleaved arrays (step 3,
+// Lx = L, Ly = L + 1 ...), and the material indices when they are checked.
+struct Dest {
+  float* L[3];
+  float* V[3];
+  std::size_t step = 1;
+  std::uint32_t* index = nullptr;
+};
+
+// Rows [row, row + n) of one direction array into dest's three outputs from `at`: the vectorized
+// run; returns the rows it left undone.
+std::size_t fastDirections(const DirectionArray& a, std::size_t row, std::size_t n, float* const* out, std::size_t step,
+                           std::size_t at) {
+  if (a.type == DirectionArray::Type::Float32) {
+    const float* p = static_cast<const float*>(a.data) + 3 * row;
+    return step == 1 ? detail::normalizeToPlanes(p, 3, n, out[0] + at, out[1] + at, out[2] + at)
+                     : detail::normalizeToRows(p, 3, n, out[0] + 3 * at);
+  }
+  const double* p = static_cast<const double*>(a.data) + 3 * row;
+  return step == 1 ? detail::normalizeToPlanes(p, 3, n, out[0] + at, out[1] + at, out[2] + at)
+                   : detail::normalizeToRows(p, 3, n, out[0] + 3 * at);
+}
+
+// Checks and normalizes rows [first, first + count) into dest (positions relative to first),
+// on several threads, a block at a time: the vectorized runs first, and only a block where they
+// leave a row undone goes row by row, to word the problem or rescale an extreme vector (the
+// same bits either way); throws the lowest row's problem.
 void normalizeRows(const ArraySamples& s, std::size_t first, std::size_t count, std::size_t materialCount,
-                   bool checkMaterial, Store&& store) {
+                   const Dest& dest) {
   static const char* const kNames[6] = {"Lx", "Ly", "Lz", "Vx", "Vy", "Vz"};
+  constexpr std::size_t kBlock = 4096;
   const std::size_t workers = detail::workerCount(count * 48);
   std::vector<RowError> errors(workers);
+  auto slowRow = [&](std::size_t k, RowError& error) {
+    const std::size_t row = first + k;
+    double d[6];
+    loadRow(s.L, row, d);
+    loadRow(s.V, row, d + 3);
+    auto fail = [&](std::string m) {
+      error.row = row;
+      error.message = std::move(m);
+      return false;
+    };
+    if (dest.index && s.material) {
+      const std::int64_t m = s.material[row];
+      if (m < 0) return fail(fmt::format("material index {} is not a non-negative integer", m));
+      if (std::uint64_t(m) >= materialCount)
+        return fail(fmt::format("material index {} out of range ({} {})", m, materialCount,
+                                materialCount == 1 ? "material" : "materials"));
+    }
+    for (int c = 0; c < 6; ++c)
+      if (!std::isfinite(d[c]))
+        return fail(std::string("field '") + kNames[c] + "' is not finite: " + detail::formatNumber(d[c]));
+    float L[3], V[3];
+    if (!normalizeDirection(d, L)) return fail("L has zero length");
+    if (!normalizeDirection(d + 3, V)) return fail("V has zero length");
+    for (int c = 0; c < 3; ++c) {
+      dest.L[c][k * dest.step] = L[c];
+      dest.V[c][k * dest.step] = V[c];
+    }
+    if (dest.index) dest.index[k] = s.material ? std::uint32_t(s.material[row]) : 0u;
+    return true;
+  };
   detail::parallelFor(workers, [&](std::size_t w) {
     const std::size_t begin = count * w / workers, end = count * (w + 1) / workers;
-    for (std::size_t k = begin; k < end; ++k) {
-      const std::size_t row = first + k;
-      double d[6];
-      loadRow(s.L, row, d);
-      loadRow(s.V, row, d + 3);
-      auto fail = [&](std::string m) {
-        errors[w].row = row;
-        errors[w].message = std::move(m);
-      };
-      if (checkMaterial && s.material) {
-        const std::int64_t m = s.material[row];
-        if (m < 0) return fail(fmt::format("material index {} is not a non-negative integer", m));
-        if (std::uint64_t(m) >= materialCount)
-          return fail(fmt::format("material index {} out of range ({} {})", m, materialCount,
-                                  materialCount == 1 ? "material" : "materials"));
+    for (std::size_t b = begin; b < end; b += kBlock) {
+      const std::size_t n = std::min(kBlock, end - b);
+      std::size_t undone = fastDirections(s.L, first + b, n, dest.L, dest.step, b) +
+                           fastDirections(s.V, first + b, n, dest.V, dest.step, b);
+      if (dest.index) {
+        std::uint32_t* index = dest.index + b;
+        if (s.material) {
+          const std::int64_t* m = s.material + first + b;
+          const std::int64_t limit = std::int64_t(std::min<std::size_t>(materialCount, INT64_MAX));
+          for (std::size_t i = 0; i < n; ++i) {
+            index[i] = std::uint32_t(m[i]);
+            undone += (m[i] >= 0 && m[i] < limit) ? 0 : 1;
+          }
+        } else {
+          std::fill(index, index + n, 0u);
+        }
       }
-      for (int c = 0; c < 6; ++c)
-        if (!std::isfinite(d[c]))
-          return fail(std::string("field '") + kNames[c] + "' is not finite: " + detail::formatNumber(d[c]));
-      float L[3], V[3];
-      if (!normalizeDirection(d, L)) return fail("L has zero length");
-      if (!normalizeDirection(d + 3, V)) return fail("V has zero length");
-      store(k, L, V);
+      if (undone == 0) continue;
+      for (std::size_t k = b; k < b + n; ++k)
+        if (!slowRow(k, errors[w])) return;
     }
   });
   for (const auto& e : errors)  // workers hold ascending ranges: the first error is the lowest row
@@ -101,13 +155,8 @@ void evaluateArrays(Evaluator& evaluator, const std::vector<MaterialParams>& mat
       for (auto* p : planes) std::fill(p + count, p + cap, 0.0f);
       std::fill(index + count, index + cap, 0u);
     }
-    normalizeRows(s, first, count, materials.size(), true, [&](std::size_t i, const float* L, const float* V) {
-      for (int c = 0; c < 3; ++c) {
-        planes[c][i] = L[c];
-        planes[3 + c][i] = V[c];
-      }
-      index[i] = s.material ? std::uint32_t(s.material[first + i]) : 0u;
-    });
+    normalizeRows(s, first, count, materials.size(),
+                  Dest{{planes[0], planes[1], planes[2]}, {planes[3], planes[4], planes[5]}, 1, index});
     batch.setCount(count);
     batch.run();
     const float* r[3] = {batch.result(0), batch.result(1), batch.result(2)};
@@ -131,10 +180,9 @@ void evaluateGridArrays(Evaluator& evaluator, const std::vector<MaterialParams>&
     const std::size_t count = std::min(chunk, n - first);
     dirs.L.resize(3 * count);
     dirs.V.resize(3 * count);
-    normalizeRows(s, first, count, nm, false, [&](std::size_t i, const float* L, const float* V) {
-      std::copy(L, L + 3, &dirs.L[3 * i]);
-      std::copy(V, V + 3, &dirs.V[3 * i]);
-    });
+    float* L = dirs.L.data();
+    float* V = dirs.V.data();
+    normalizeRows(s, first, count, nm, Dest{{L, L + 1, L + 2}, {V, V + 1, V + 2}, 3, nullptr});
     // Every material's rows of this chunk of directions: bit-identical to the whole grid's.
     const std::vector<float> part = evaluator.evaluateGrid(materials, dirs);
     for (std::size_t m = 0; m < nm; ++m)

@@ -22,6 +22,7 @@
 
 #include "brdfcl/error.hpp"
 #include "brdfcl/io.hpp"
+#include "io/directions.hpp"
 #include "io/messages.hpp"
 #include "io/rows.hpp"
 
@@ -131,6 +132,22 @@ class RowChecker {
  public:
   RowChecker(std::size_t materialCount, bool hasMaterial, Samples& out)
       : materialCount_(materialCount), hasMaterial_(hasMaterial), out_(out) {}
+
+  // Rows [row, row + n) of a C-order float32 or float64 array with `cols` columns from `src`:
+  // the vectorized runs of io/directions.hpp, the same bits as set(). Returns false when some
+  // row is left undone (a problem, or an extreme vector); the caller then goes row by row.
+  template <typename T>
+  bool setBlock(std::size_t row, std::size_t n, const T* src, int cols) const {
+    std::size_t undone = 0;
+    if (hasMaterial_) {
+      undone += detail::materialIndices(src, std::size_t(cols), n, materialCount_ ? materialCount_ : SIZE_MAX,
+                                        &out_.material[row]);
+      ++src;
+    }
+    undone += detail::normalizeToRows(src, std::size_t(cols), n, &out_.L[3 * row]);
+    undone += detail::normalizeToRows(src + 3, std::size_t(cols), n, &out_.V[3 * row]);
+    return undone == 0;
+  }
 
   // v holds 7 values (material first) or 6 when the file has no material column.
   std::string set(std::size_t row, const double* v) const {
@@ -653,6 +670,17 @@ std::string shapeText(const std::vector<std::uint64_t>& shape) {
 template <typename T>
 void readNpyRows(const char* data, std::size_t rows, std::size_t first, std::size_t last, int cols, bool fortran,
                  const RowChecker& checker, ChunkError& error) {
+  // C order (what numpy.save writes): whole blocks through the vectorized runs; a block with a
+  // bad or extreme row is redone row by row below, which words the problem.
+  constexpr std::size_t kBlock = 4096;
+  if (!fortran) {
+    const T* base = reinterpret_cast<const T*>(data);  // raw_ is malloc-aligned and rows are whole items
+    for (; first < last; first += kBlock) {
+      const std::size_t n = std::min(kBlock, last - first);
+      if (!checker.setBlock(first, n, base + first * std::size_t(cols), cols)) break;
+    }
+    if (first >= last) return;
+  }
   double values[7];
   for (std::size_t i = first; i < last; ++i) {
     for (int j = 0; j < cols; ++j) {
@@ -795,20 +823,6 @@ class NpyReader {
 };
 
 }  // namespace
-
-// Dividing by the largest component first keeps x*x+y*y+z*z from overflowing (1e200) or
-// underflowing (1e-200) in double: the scaled length lies in [1, sqrt(3)], so every finite
-// non-zero vector normalizes and zero length is the only failure.
-bool normalizeDirection(const double* d, float* dst) {
-  const double m = std::max({std::fabs(d[0]), std::fabs(d[1]), std::fabs(d[2])});
-  if (!(m > 0.0)) return false;
-  const double x = d[0] / m, y = d[1] / m, z = d[2] / m;
-  const double len = std::sqrt(x * x + y * y + z * z);
-  dst[0] = static_cast<float>(x / len);
-  dst[1] = static_cast<float>(y / len);
-  dst[2] = static_cast<float>(z / len);
-  return true;
-}
 
 struct SampleStream::Impl {
   Source source;
