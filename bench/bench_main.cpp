@@ -13,6 +13,7 @@
 #include <random>
 #include <string>
 
+#include "brdfcl/arrays.hpp"
 #include "brdfcl/render.hpp"
 #include "brdfcl/stream.hpp"
 #include "workload.hpp"
@@ -81,6 +82,45 @@ void BM_EvalGrid(benchmark::State& state) {
   ev.evaluateGrid(w.materials, s);
   for (auto _ : state) benchmark::DoNotOptimize(ev.evaluateGrid(w.materials, s));
   state.SetItemsProcessed(std::int64_t(state.iterations()) * std::int64_t(n * w.materials.size()));
+}
+
+// The library's in-memory paths on the kernel's own workload (the same pairs and materials as
+// BM_Eval/<lobe>/<n>, `materials` random ones): what the Python module calls. `arrays` is
+// evaluateArrays on float32 (N, 3) rows, checked and normalized, into a reused output;
+// `grid` is Evaluator::evaluateGrid of one material, returning a fresh vector; `kernel` runs the
+// batch alone, so each row's items/s divided by its kernel row's is the fraction of kernel speed.
+enum class InMemory { Kernel, Arrays, Grid };
+void BM_InMemory(benchmark::State& state, std::string lobe, InMemory path) {
+  const std::size_t n = std::size_t(state.range(0)), materials = std::size_t(state.range(1));
+  auto b = std::make_unique<bench::Bench>(runtime(), lobe, n, 1, materials);
+  const SoaBatch& batch = b->batch();
+  std::vector<float> L(3 * n), V(3 * n), rgb(3 * n);
+  std::vector<std::int64_t> index(n);
+  Samples s;
+  for (std::size_t i = 0; i < n; ++i) {
+    for (int c = 0; c < 3; ++c) {
+      L[3 * i + c] = batch.directionPlane(c)[i];
+      V[3 * i + c] = batch.directionPlane(3 + c)[i];
+    }
+    index[i] = batch.materialIndexPlane()[i];
+  }
+  ArraySamples a;
+  a.L.data = L.data();
+  a.V.data = V.data();
+  a.material = materials > 1 ? index.data() : nullptr;
+  a.count = n;
+  if (path == InMemory::Grid) s.L = L, s.V = V;
+  const auto& mats = b->workload().materials;
+  auto once = [&] {
+    switch (path) {
+      case InMemory::Kernel: b->runKernel(); break;
+      case InMemory::Arrays: evaluateArrays(b->evaluator(), mats, a, rgb.data()); break;
+      case InMemory::Grid: benchmark::DoNotOptimize(b->evaluator().evaluateGrid(mats, s)); break;
+    }
+  };
+  once();
+  for (auto _ : state) once();
+  state.SetItemsProcessed(std::int64_t(state.iterations()) * std::int64_t(n));
 }
 
 // `brdfcl eval` on a float32 NPY file of n samples (all layers), file to file: reading and
@@ -153,6 +193,15 @@ void registerAll() {
       if (n <= (1 << 22))  // a single-threaded scalar loop over 64M samples takes many seconds
         benchmark::RegisterBenchmark(("BM_ScalarPeer/" + lobe).c_str(), BM_Peer, lobe, peers::Flavor::Scalar)
             ->Arg(n)->UseRealTime()->Unit(benchmark::kMillisecond);
+    }
+  }
+  // Interleaved, so that each library row sits next to its kernel row in one run.
+  for (const auto& [lobe, materials] : std::vector<std::pair<std::string, int>>{{"all", 256}, {"specular", 1}}) {
+    for (auto [name, path] : {std::pair{"kernel", InMemory::Kernel}, std::pair{"arrays", InMemory::Arrays},
+                              std::pair{"grid", InMemory::Grid}}) {
+      if (path == InMemory::Grid && materials != 1) continue;
+      benchmark::RegisterBenchmark(("BM_InMemory/" + lobe + "/" + name).c_str(), BM_InMemory, lobe, path)
+          ->Args({1 << 22, materials})->ArgNames({"n", "materials"})->UseRealTime()->Unit(benchmark::kMillisecond);
     }
   }
   benchmark::RegisterBenchmark("BM_StreamTriad", BM_StreamTriad)->Arg(1 << 25)->Iterations(1)->UseRealTime();

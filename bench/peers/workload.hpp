@@ -40,6 +40,8 @@ class Bench {
   std::size_t size() const { return n_; }
   const Workload& workload() const { return workload_; }
   void runKernel() { batch_->run(); }
+  Evaluator& evaluator() { return *evaluator_; }
+  const SoaBatch& batch() const { return *batch_; }
   void runPeer(peers::Flavor flavor) { peers::run(flavor, workload_.name, peerInput_); }
   // Largest |kernel - peer| / (|kernel| + 1e-3) over the batch, after both ran.
   double peerDeviation() const;

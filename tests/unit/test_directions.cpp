@@ -1,5 +1,5 @@
 // Direction normalization (host/src/io/directions.cpp): the vectorized block runs give the bits
-// of the per-row normalizeDirection, both are within an ulp of a long-double reference, and
+// of the per-row normalizeDirection, both are within 3 ulp of a long-double reference, and
 // rescaled extreme vectors equal their unscaled selves.
 #include <gtest/gtest.h>
 
@@ -37,7 +37,7 @@ bool sameBits(float a, float b) { return std::memcmp(&a, &b, sizeof a) == 0; }
 
 TEST(Directions, Float32RunsEqualPerRow) {
   const std::size_t n = 20000;
-  const auto d = randomRows(n, -60, 60, 1);
+  const auto d = randomRows(n, -40, 40, 1);
   std::vector<float> f(d.begin(), d.end());
   std::vector<float> x(n), y(n), z(n), rows(3 * n);
   ASSERT_EQ(detail::normalizeToPlanes(f.data(), 3, n, x.data(), y.data(), z.data()), 0u);
@@ -63,8 +63,9 @@ TEST(Directions, Float64RunsEqualPerRowAndLeaveExtremesUndone) {
   std::size_t extreme = 0;
   for (std::size_t i = 0; i < n; ++i) {
     const double* row = &d[3 * i];
-    const double s = (row[0] * row[0] + row[1] * row[1]) + row[2] * row[2];
-    const bool plain = s >= 0x1p-1000 && s <= 0x1p+1000;
+    const float f[3] = {float(row[0]), float(row[1]), float(row[2])};
+    const float s = (f[0] * f[0] + f[1] * f[1]) + f[2] * f[2];
+    const bool plain = s >= 0x1p-96f && s <= 0x1p+96f;
     extreme += !plain;
     float ref[3];
     ASSERT_TRUE(normalizeDirection(row, ref)) << "row " << i;
@@ -72,8 +73,11 @@ TEST(Directions, Float64RunsEqualPerRowAndLeaveExtremesUndone) {
     if (plain)
       for (int c = 0; c < 3; ++c) ASSERT_TRUE(sameBits(got[c], ref[c])) << "row " << i << " component " << c;
   }
-  EXPECT_GT(extreme, n / 10);
+  EXPECT_GT(extreme, n / 2);
   EXPECT_EQ(undone, extreme);
+  // float32 rows beyond 2^48 in length are left to the per-row rescaling too.
+  const float big[6] = {0x1p60f, 0, 1, 0, 0x1p-60f, 0};
+  EXPECT_EQ(detail::normalizeToRows(big, 3, 2, x.data()), 2u);
 }
 
 // The stride-7 rows of an NPY file (material first), and an odd stride through the generic path.
@@ -104,7 +108,11 @@ TEST(Directions, BadRowsAreCounted) {
   const float nan = std::numeric_limits<float>::quiet_NaN(), inf = std::numeric_limits<float>::infinity();
   const std::vector<float> rows = {0, 0, 1, 0, 0, 0, nan, 0, 1, 1, inf, 0, 1e-30f, 0, 0, -0.0f, 0, 0};
   std::vector<float> out(rows.size());
-  EXPECT_EQ(detail::normalizeToRows(rows.data(), 3, 6, out.data()), 4u);  // zero, NaN, inf, -0
+  // zero, NaN, inf, a length below float's range (rescaled row by row), -0
+  EXPECT_EQ(detail::normalizeToRows(rows.data(), 3, 6, out.data()), 5u);
+  const double tiny[3] = {1e-30, 0, 0};
+  ASSERT_TRUE(brdfcl::normalizeDirection(tiny, out.data()));
+  EXPECT_EQ(out[0], 1.0f);
   const std::vector<double> idx = {0, 1, 2, -1, 0.5, 3, std::nan(""), 4294967296.0};
   std::vector<std::uint32_t> got(idx.size());
   EXPECT_EQ(detail::materialIndices(idx.data(), 1, idx.size(), 3, got.data()), 5u);
@@ -112,8 +120,8 @@ TEST(Directions, BadRowsAreCounted) {
   EXPECT_EQ(got[2], 2u);
 }
 
-// Against x / |v| computed in long double: the float results are the correctly rounded value or
-// its neighbour, and rescaling by a power of two changes nothing.
+// Against x / |v| computed in long double: within 3 ulp, and rescaling by a power of two
+// changes nothing.
 TEST(Directions, AccurateAndScaleInvariant) {
   const std::size_t n = 20000;
   const auto d = randomRows(n, -30, 30, 4);
@@ -124,10 +132,10 @@ TEST(Directions, AccurateAndScaleInvariant) {
     const long double len = std::sqrt((long double)row[0] * row[0] + (long double)row[1] * row[1] +
                                       (long double)row[2] * row[2]);
     for (int c = 0; c < 3; ++c) {
-      const float exact = float(row[c] / len);
-      const float lo = std::nextafter(exact, -2.0f), hi = std::nextafter(exact, 2.0f);
-      ASSERT_TRUE(got[c] == exact || got[c] == lo || got[c] == hi)
-          << "row " << i << " component " << c << ": " << got[c] << " vs " << exact;
+      const long double exact = row[c] / len;
+      const long double ulp = std::ldexp(1.0L, std::ilogb(float(exact)) - 23);
+      ASSERT_LE(std::fabs(got[c] - exact), 3 * ulp) << "row " << i << " component " << c << ": " << got[c]
+                                                    << " vs " << double(exact);
     }
     for (int e : {-900, -200, 300, 900}) {
       const double scaled[3] = {std::ldexp(row[0], e), std::ldexp(row[1], e), std::ldexp(row[2], e)};

@@ -50,6 +50,7 @@ class SoaBatch;
 class Evaluator {
  public:
   Evaluator(Runtime& rt, EvalOptions options);
+  ~Evaluator();
 
   const EvalOptions& options() const { return options_; }
 
@@ -82,12 +83,19 @@ class Evaluator {
  private:
   friend class SoaBatch;
   struct Batch;
+  struct Planes;  // a batch's page-aligned host planes and the device buffers wrapping them
   Batch prepare(const std::vector<MaterialParams>& materials);
+  // The pool of planes scratch batches reuse, so that repeated calls neither allocate nor fault
+  // fresh pages: take returns idle planes of exactly `floats` per plane, or nullptr.
+  std::unique_ptr<Planes> takePlanes(std::size_t floats);
+  void givePlanes(std::unique_ptr<Planes> planes);
 
   Runtime& rt_;
   EvalOptions options_;
   std::mutex tableMutex_;                    // guards the lazy bake of table_
   std::unique_ptr<SheenAlbedoTable> table_;  // set once, never replaced
+  std::mutex poolMutex_;                     // guards pool_
+  std::vector<std::unique_ptr<Planes>> pool_;
 };
 
 // Samples as structure-of-arrays planes in page-aligned host memory that the device reads and
@@ -103,6 +111,12 @@ class SoaBatch {
   // allocating <n> MiB for a batch" when the planes cannot be allocated. The planes themselves
   // are not checked: this is the throughput path, so keep NaN and infinities out of them.
   SoaBatch(Evaluator& evaluator, const std::vector<MaterialParams>& materials, std::size_t capacity);
+  // A batch for callers that write every input lane they run (the first count(), and zeros up
+  // to capacity() before a shorter run), as evaluate(), evaluateArrays and evaluateStream do:
+  // its planes come from the evaluator's pool and go back to it, holding whatever the last
+  // user left. Thread-safe like the Evaluator; the pool keeps at most a few idle sets.
+  struct Scratch {};
+  SoaBatch(Evaluator& evaluator, const std::vector<MaterialParams>& materials, std::size_t capacity, Scratch);
   ~SoaBatch();
   SoaBatch(const SoaBatch&) = delete;
   SoaBatch& operator=(const SoaBatch&) = delete;
@@ -125,7 +139,11 @@ class SoaBatch {
   const std::vector<float>& sheenAlbedoValues() const { return tableValues_; }
   int sheenAlbedoSize() const { return tableSize_; }
 
-  void run();
+  void run();  // start() then finish()
+  // run() in two halves: start() enqueues the launch and returns at once; finish() waits for
+  // it. Between the two, leave this batch's planes alone (fill another batch meanwhile).
+  void start();
+  void finish();
 
   // Evaluates `samples` (any count; capacity() at a time) into rgb, 3 floats a sample: what
   // Evaluator::evaluate does, on this batch's buffers, so a stream of chunks allocates once.
@@ -133,14 +151,19 @@ class SoaBatch {
   void evaluate(const Samples& samples, float* rgb);
 
  private:
-  void release();  // frees the device buffers, then the host planes they wrap
+  SoaBatch(Evaluator& evaluator, const std::vector<MaterialParams>& materials, std::size_t capacity, bool pooled);
+  void release();  // frees (or pools) the device buffers and the host planes they wrap
 
   Evaluator& ev_;
+  bool pooled_ = false;
+  std::unique_ptr<Evaluator::Planes> set_;
   std::size_t capacity_ = 0, count_ = 0;
   std::size_t allocated_ = 0;  // floats a plane holds: capacity padded to whole work-groups
   float* planes_[9] = {};  // Lx Ly Lz Vx Vy Vz r g b, each page-aligned
   std::uint32_t* index_ = nullptr;
   bool inputsChanged_ = true;
+  bool running_ = false;
+  cl::Event done_;  // the last command start() enqueued
   std::vector<brdfcl_material> packed_;
   std::vector<float> tableValues_;
   int tableSize_ = 2;

@@ -47,11 +47,12 @@ struct Samples {
   std::size_t size() const { return L.size() / 3; }
 };
 
-// How every reader of directions normalizes one (the samples files, evaluateArrays): in double,
-// s = (x*x + y*y) + z*z, then each component times 1/sqrt(s), rounded to float; a vector whose s
-// would overflow or underflow is first scaled by a power of two (exact), so every finite
-// non-zero vector normalizes. Returns false (leaving dst alone) for zero length. The inputs must
-// be finite. io/directions.hpp has the vectorized form, which gives the same bits.
+// How every reader of directions normalizes one (the samples files, evaluateArrays): each
+// component rounded to float, then x / sqrt((x*x + y*y) + z*z) with every operation in float
+// (within 3 ulp of the exact unit vector); a vector whose squared length would leave float's
+// range is first scaled by a power of two in double (exact), so every finite non-zero vector
+// normalizes. Returns false (leaving dst alone) for zero length. The inputs must be finite.
+// io/directions.hpp has the vectorized form, which gives the same bits.
 bool normalizeDirection(const double* d, float* dst);
 
 // CSV whose header names the columns material,Lx,Ly,Lz,Vx,Vy,Vz in any order (material may be

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <memory>
 #include <string>
 
 #include <fmt/format.h>
@@ -143,10 +144,16 @@ void evaluateArrays(Evaluator& evaluator, const std::vector<MaterialParams>& mat
   if (!s.material && materials.size() != 1)
     throw Error(fmt::format("{} materials but no material index; give one index per sample", materials.size()));
   if (chunk == 0) chunk = kDefaultChunk;
-  SoaBatch batch(evaluator, materials, std::min(std::max<std::size_t>(std::min(chunk, s.count), 1), evaluator.launchLimit()));
-  const std::size_t cap = batch.capacity();
-  for (std::size_t first = 0; first < s.count; first += cap) {
-    const std::size_t count = std::min(cap, s.count - first);
+  // Two batches in turn: the host checks and normalizes chunk k + 1 into one while the device
+  // evaluates chunk k in the other, so neither waits for the other to wake up.
+  const std::size_t capacity = std::min(std::max<std::size_t>(std::min(chunk, s.count), 1), evaluator.launchLimit());
+  SoaBatch first(evaluator, materials, capacity, SoaBatch::Scratch{});
+  std::unique_ptr<SoaBatch> second;
+  if (s.count > first.capacity()) second = std::make_unique<SoaBatch>(evaluator, materials, capacity, SoaBatch::Scratch{});
+  SoaBatch* batches[2] = {&first, second.get()};
+  const std::size_t cap = first.capacity();
+  auto fill = [&](SoaBatch& batch, std::size_t begin) {
+    const std::size_t count = std::min(cap, s.count - begin);
     float* planes[6];
     for (int k = 0; k < 6; ++k) planes[k] = batch.direction(k);
     std::uint32_t* index = batch.materialIndex();
@@ -155,12 +162,22 @@ void evaluateArrays(Evaluator& evaluator, const std::vector<MaterialParams>& mat
       for (auto* p : planes) std::fill(p + count, p + cap, 0.0f);
       std::fill(index + count, index + cap, 0u);
     }
-    normalizeRows(s, first, count, materials.size(),
+    normalizeRows(s, begin, count, materials.size(),
                   Dest{{planes[0], planes[1], planes[2]}, {planes[3], planes[4], planes[5]}, 1, index});
     batch.setCount(count);
-    batch.run();
-    const float* r[3] = {batch.result(0), batch.result(1), batch.result(2)};
-    float* out = rgb + 3 * first;
+  };
+  if (s.count == 0) return;
+  fill(first, 0);
+  first.start();
+  for (std::size_t begin = 0, k = 0; begin < s.count; begin += cap, ++k) {
+    SoaBatch& current = *batches[k % 2];
+    const std::size_t next = begin + cap;
+    if (next < s.count) fill(*batches[(k + 1) % 2], next);  // a bad row throws; the destructors wait
+    current.finish();
+    if (next < s.count) batches[(k + 1) % 2]->start();
+    const std::size_t count = current.count();
+    const float* r[3] = {current.result(0), current.result(1), current.result(2)};
+    float* out = rgb + 3 * begin;
     for (std::size_t i = 0; i < count; ++i) {
       out[3 * i] = r[0][i];
       out[3 * i + 1] = r[1][i];

@@ -8,6 +8,9 @@
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
+#include <utility>
+
+#include <sys/mman.h>
 
 #include <fmt/format.h>
 
@@ -20,7 +23,9 @@ namespace brdfcl {
 namespace {
 constexpr std::size_t kLanes = SoaBatch::kLanes;
 constexpr std::size_t kMaxChunk = std::size_t(1) << 22;
-constexpr std::size_t kPage = 4096;
+constexpr std::size_t kPage = 4096, kHugePage = std::size_t(2) << 20;
+// Idle plane sets an Evaluator keeps for its scratch batches (one per concurrent caller, typically).
+constexpr std::size_t kPoolSets = 4;
 // Work-items per work-group for large batches: measured on PoCL's pthread device (bench/README.md,
 // "Work-group size") against its own choice: +20 % on sheen, +30 % on the layered material.
 constexpr std::size_t kLocalSize = 512;
@@ -50,12 +55,16 @@ template <class T>
 T* allocPages(std::size_t count) {
   // A count whose byte size does not fit size_t can never be allocated; checking first also
   // keeps count * sizeof(T) from wrapping round to a small allocation.
-  const bool representable = count <= (SIZE_MAX - kPage) / sizeof(T);
+  const bool representable = count <= (SIZE_MAX - kHugePage) / sizeof(T);
   const std::size_t bytes = representable ? roundUp(std::max<std::size_t>(count * sizeof(T), 1), kPage) : 0;
-  void* p = representable ? std::aligned_alloc(kPage, bytes) : nullptr;
+  // Planes of several MiB sit on 2 MiB boundaries and ask for transparent huge pages (where the
+  // kernel grants them on request): one fault per 2 MiB instead of 512 on first touch.
+  const bool huge = bytes >= 2 * kHugePage;
+  void* p = representable ? std::aligned_alloc(huge ? kHugePage : kPage, huge ? roundUp(bytes, kHugePage) : bytes) : nullptr;
   if (!p)
     throw Error(fmt::format("out of host memory allocating {:.0f} MiB for a batch",
                             std::ceil(double(count) * sizeof(T) / double(1 << 20))));
+  if (huge) ::madvise(p, roundUp(bytes, kHugePage), MADV_HUGEPAGE);  // advice only: failure is harmless
   std::memset(p, 0, bytes);  // zero directions lie below the horizon: padding lanes give f = 0
   return static_cast<T*>(p);
 }
@@ -86,6 +95,63 @@ void fillDirectionPlanes(const Samples& s, std::size_t first, std::size_t count,
 }  // namespace
 
 Evaluator::Evaluator(Runtime& rt, EvalOptions options) : rt_(rt), options_(options) { checkProfileOptions(options); }
+
+// Host planes (Lx Ly Lz Vx Vy Vz r g b, then the material index), `floats` each, and the
+// buffers that hand them to the device in place; the buffers go before the memory they wrap.
+struct Evaluator::Planes {
+  std::size_t floats = 0;
+  float* host[9] = {};
+  std::uint32_t* index = nullptr;
+  cl::Buffer buffers[9], indexBuffer;
+
+  Planes(const cl::Context& ctx, std::size_t n) : floats(n) {
+    try {
+      for (auto& p : host) p = allocPages<float>(n);
+      index = allocPages<std::uint32_t>(n);
+    } catch (...) {
+      release();
+      throw;
+    }
+    try {
+      for (int k = 0; k < 9; ++k)
+        buffers[k] = cl::Buffer(ctx, (k < 6 ? CL_MEM_READ_ONLY : CL_MEM_WRITE_ONLY) | CL_MEM_USE_HOST_PTR, n * 4, host[k]);
+      indexBuffer = cl::Buffer(ctx, CL_MEM_READ_ONLY | CL_MEM_USE_HOST_PTR, n * 4, index);
+    } catch (const cl::Error&) {
+      release();
+      rethrowOpenCL("allocating a sample batch");
+    }
+  }
+  ~Planes() { release(); }
+  Planes(const Planes&) = delete;
+  Planes& operator=(const Planes&) = delete;
+
+ private:
+  void release() {
+    for (auto& b : buffers) b = cl::Buffer();
+    indexBuffer = cl::Buffer();
+    for (auto*& p : host) std::free(std::exchange(p, nullptr));
+    std::free(std::exchange(index, nullptr));
+  }
+};
+
+Evaluator::~Evaluator() = default;
+
+std::unique_ptr<Evaluator::Planes> Evaluator::takePlanes(std::size_t floats) {
+  std::lock_guard<std::mutex> lock(poolMutex_);
+  for (auto it = pool_.begin(); it != pool_.end(); ++it)
+    if ((*it)->floats == floats) {
+      auto planes = std::move(*it);
+      pool_.erase(it);
+      return planes;
+    }
+  return nullptr;
+}
+
+void Evaluator::givePlanes(std::unique_ptr<Planes> planes) {
+  std::lock_guard<std::mutex> lock(poolMutex_);
+  if (pool_.size() == kPoolSets) pool_.erase(pool_.begin());  // the least recently returned goes
+  pool_.push_back(std::move(planes));
+}
 
 // Baked on first use; the lock makes concurrent first calls bake once and see the finished
 // table (a failed bake leaves table_ empty and the next call tries again). table_ is never
@@ -138,13 +204,18 @@ Evaluator::Batch Evaluator::prepare(const std::vector<MaterialParams>& materials
 
 struct SoaBatch::Device {
   Evaluator::Batch batch;
-  cl::Buffer planes[9], index;
   cl::Kernel kernel;
   std::size_t local = 1;  // work-group size used when a launch is large enough
 };
 
 SoaBatch::SoaBatch(Evaluator& evaluator, const std::vector<MaterialParams>& materials, std::size_t capacity)
-    : ev_(evaluator), capacity_(roundUp(std::max<std::size_t>(capacity, 1), kLanes)), count_(capacity) {
+    : SoaBatch(evaluator, materials, capacity, false) {}
+
+SoaBatch::SoaBatch(Evaluator& evaluator, const std::vector<MaterialParams>& materials, std::size_t capacity, Scratch)
+    : SoaBatch(evaluator, materials, capacity, true) {}
+
+SoaBatch::SoaBatch(Evaluator& evaluator, const std::vector<MaterialParams>& materials, std::size_t capacity, bool pooled)
+    : ev_(evaluator), pooled_(pooled), capacity_(roundUp(std::max<std::size_t>(capacity, 1), kLanes)), count_(capacity) {
   if (capacity > SIZE_MAX / 2)  // rounding up would wrap round: no such batch fits in memory
     throw Error(fmt::format("out of host memory allocating {:.0f} MiB for a batch", double(capacity) * 4 / double(1 << 20)));
   device_ = std::make_unique<Device>();
@@ -160,46 +231,42 @@ SoaBatch::SoaBatch(Evaluator& evaluator, const std::vector<MaterialParams>& mate
     rethrowOpenCL("creating the batch kernel");
   }
   // Planes are padded (with zeros: f = 0) to whole work-groups, so a launch rounded up to the
-  // work-group size never reads past them. A constructor that throws runs no destructor, so a
-  // failure part-way frees what was already allocated.
+  // work-group size never reads past them. Pooled planes of the same size were padded alike,
+  // and no batch writes past its capacity, so their padding is still zero.
   allocated_ = roundUp(capacity_, kLanes * device_->local);
+  if (pooled_) set_ = ev_.takePlanes(allocated_);
+  if (!set_) set_ = std::make_unique<Evaluator::Planes>(ev_.rt_.context(), allocated_);
+  for (int k = 0; k < 9; ++k) planes_[k] = set_->host[k];
+  index_ = set_->index;
   try {
-    for (auto& p : planes_) p = allocPages<float>(allocated_);
-    index_ = allocPages<std::uint32_t>(allocated_);
-  } catch (...) {
-    release();
-    throw;
-  }
-  try {
-    const auto& ctx = ev_.rt_.context();
     auto& d = *device_;
-    for (int k = 0; k < 9; ++k)
-      d.planes[k] = cl::Buffer(ctx, (k < 6 ? CL_MEM_READ_ONLY : CL_MEM_WRITE_ONLY) | CL_MEM_USE_HOST_PTR,
-                               allocated_ * 4, planes_[k]);
-    d.index = cl::Buffer(ctx, CL_MEM_READ_ONLY | CL_MEM_USE_HOST_PTR, allocated_ * 4, index_);
     int arg = 0;
-    for (int k = 0; k < 6; ++k) d.kernel.setArg(arg++, d.planes[k]);
-    d.kernel.setArg(arg++, d.index);
+    for (int k = 0; k < 6; ++k) d.kernel.setArg(arg++, set_->buffers[k]);
+    d.kernel.setArg(arg++, set_->indexBuffer);
     d.kernel.setArg(arg++, d.batch.materials);
     d.kernel.setArg(arg++, d.batch.tableBuffer);
     d.kernel.setArg(arg++, d.batch.tableSize);
-    for (int k = 6; k < 9; ++k) d.kernel.setArg(arg++, d.planes[k]);
+    for (int k = 6; k < 9; ++k) d.kernel.setArg(arg++, set_->buffers[k]);
   } catch (const cl::Error&) {
     release();
     rethrowOpenCL("allocating a sample batch");
   }
 }
 
-SoaBatch::~SoaBatch() { release(); }
+SoaBatch::~SoaBatch() {
+  try {
+    finish();  // the device must be done with the planes before they are freed or pooled
+  } catch (...) {
+  }
+  release();
+}
 
 void SoaBatch::release() {
-  device_.reset();  // release the buffers before the memory they wrap
-  for (auto*& p : planes_) {
-    std::free(p);
-    p = nullptr;
-  }
-  std::free(index_);
+  device_.reset();  // the kernel lets go of the buffers first
+  for (auto*& p : planes_) p = nullptr;
   index_ = nullptr;
+  if (set_ && pooled_) ev_.givePlanes(std::move(set_));
+  set_.reset();
 }
 
 void SoaBatch::setCount(std::size_t count) {
@@ -221,6 +288,13 @@ std::uint32_t* SoaBatch::materialIndex() {
 const float* SoaBatch::result(int c) const { return planes_[6 + c]; }
 
 void SoaBatch::run() {
+  start();
+  finish();
+}
+
+// Everything is enqueued without blocking (the queue is in order), so the host may fill another
+// batch while this one runs; finish() waits for the last command.
+void SoaBatch::start() {
   if (count_ == 0) return;
   auto& q = ev_.rt_.queue();
   auto& d = *device_;
@@ -229,8 +303,8 @@ void SoaBatch::run() {
       // A write map/unmap hands the host's writes to a device that caches USE_HOST_PTR memory
       // (a GPU); on a CPU device both calls are free.
       for (int k = 0; k < 7; ++k) {
-        cl::Buffer& b = k < 6 ? d.planes[k] : d.index;
-        void* p = q.enqueueMapBuffer(b, CL_TRUE, CL_MAP_WRITE, 0, allocated_ * 4);
+        cl::Buffer& b = k < 6 ? set_->buffers[k] : set_->indexBuffer;
+        void* p = q.enqueueMapBuffer(b, CL_FALSE, CL_MAP_WRITE, 0, allocated_ * 4);
         q.enqueueUnmapMemObject(b, p);
       }
       inputsChanged_ = false;
@@ -242,10 +316,21 @@ void SoaBatch::run() {
     if (grouped) global = roundUp(global, d.local);
     q.enqueueNDRangeKernel(d.kernel, cl::NullRange, cl::NDRange(global), grouped ? cl::NDRange(d.local) : cl::NullRange);
     for (int k = 6; k < 9; ++k) {
-      void* p = q.enqueueMapBuffer(d.planes[k], CL_TRUE, CL_MAP_READ, 0, allocated_ * 4);
-      q.enqueueUnmapMemObject(d.planes[k], p);
+      void* p = q.enqueueMapBuffer(set_->buffers[k], CL_FALSE, CL_MAP_READ, 0, allocated_ * 4);
+      q.enqueueUnmapMemObject(set_->buffers[k], p, nullptr, k == 8 ? &done_ : nullptr);
     }
-    q.finish();
+    q.flush();
+    running_ = true;
+  } catch (const cl::Error&) {
+    rethrowOpenCL("evaluating samples");
+  }
+}
+
+void SoaBatch::finish() {
+  if (!running_) return;
+  running_ = false;
+  try {
+    done_.wait();
   } catch (const cl::Error&) {
     rethrowOpenCL("evaluating samples");
   }
@@ -257,7 +342,7 @@ std::vector<float> Evaluator::evaluate(const std::vector<MaterialParams>& materi
   const std::size_t n = samples.size();
   std::vector<float> rgb(3 * n);
   if (n == 0) return rgb;
-  SoaBatch batch(*this, materials, std::min(roundUp(n, kLanes), launchLimit()));
+  SoaBatch batch(*this, materials, std::min(roundUp(n, kLanes), launchLimit()), SoaBatch::Scratch{});
   batch.evaluate(samples, rgb.data());
   return rgb;
 }

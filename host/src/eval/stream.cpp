@@ -79,7 +79,7 @@ StreamStats evaluateStream(Evaluator& evaluator, const std::vector<MaterialParam
 
   std::unique_ptr<SoaBatch> batch;
   if (!options.grid)
-    batch = std::make_unique<SoaBatch>(evaluator, materials, std::min(chunk, evaluator.launchLimit()));
+    batch = std::make_unique<SoaBatch>(evaluator, materials, std::min(chunk, evaluator.launchLimit()), SoaBatch::Scratch{});
 
   // Two slots each: while slot k is evaluated, slot k+1 is read and the results of slot k-1
   // are written. Futures of std::async wait in their destructors, so an exception here never

@@ -9,7 +9,7 @@
 #include "brdfcl/io.hpp"
 
 // The runs are compiled twice where the compiler can dispatch at load time: AVX2 doubles the
-// width of the double-precision loops, and every clone rounds exactly as the baseline does.
+// width of the loops, and every clone rounds exactly as the baseline does.
 #if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && !defined(__SANITIZE_ADDRESS__)
 #define BRDFCL_CLONES __attribute__((target_clones("avx2", "default")))
 #else
@@ -20,32 +20,25 @@ namespace brdfcl {
 
 namespace {
 
-// Squared lengths in this range need no rescaling: 1/sqrt(s) and x/sqrt(s) neither overflow nor
-// lose bits to subnormals. Every float32 row that is not zero lies in it (its squares are exact
-// in double), so rescaling only ever happens for float64 input of extreme magnitude.
-constexpr double kLo = 0x1p-1000, kHi = 0x1p+1000;
+// Rows are normalized in float: x / sqrt((x*x + y*y) + z*z), each operation rounded to float
+// (within 3 ulp of the exact unit vector). A squared length in this range neither overflows nor
+// loses more than 2^-50 of itself to subnormal squares; a row outside it is rescaled first.
+constexpr float kLo = 0x1p-96f, kHi = 0x1p+96f;
 
-// x/|v|, rounded to float, as 1/sqrt(s) then a product: one division a row, not three.
-inline void unit(double x, double y, double z, double s, float* ox, float* oy, float* oz) {
-  const double r = 1.0 / std::sqrt(s);
-  *ox = static_cast<float>(x * r);
-  *oy = static_cast<float>(y * r);
-  *oz = static_cast<float>(z * r);
-}
-
-inline double squaredLength(double x, double y, double z) { return (x * x + y * y) + z * z; }
+inline float squaredLength(float x, float y, float z) { return (x * x + y * y) + z * z; }
 
 // Compile-time strides let the compiler turn the interleaved loads into shuffles.
 template <std::size_t Stride, class T, class Store>
 inline std::size_t run(const T* src, std::size_t n, Store store) {
   std::size_t bad = 0;
   for (std::size_t i = 0; i < n; ++i) {
-    const double x = src[i * Stride], y = src[i * Stride + 1], z = src[i * Stride + 2];
-    const double s = squaredLength(x, y, z);
+    const float x = static_cast<float>(src[i * Stride]), y = static_cast<float>(src[i * Stride + 1]),
+                z = static_cast<float>(src[i * Stride + 2]);
+    const float s = squaredLength(x, y, z);
     // Branch-free, so that the loop vectorizes: false for NaN and infinities too.
     const bool ok = (s >= kLo) & (s <= kHi);
-    const double r = 1.0 / std::sqrt(ok ? s : 1.0);
-    store(i, static_cast<float>(x * r), static_cast<float>(y * r), static_cast<float>(z * r));
+    const float len = std::sqrt(ok ? s : 1.0f);
+    store(i, x / len, y / len, z / len);
     bad += std::size_t(!ok);
   }
   return bad;
@@ -98,20 +91,23 @@ std::size_t indicesAnyStride(const T* src, std::size_t stride, std::size_t n, st
 
 }  // namespace
 
-// The block runs' arithmetic, with rescaling by a power of two for the rare rows outside
-// [kLo, kHi]: scaling by 2^-e is exact, so a rescaled row gets the value the plain formula
-// would give if it could not overflow or underflow.
+// The block runs' arithmetic, and for the rows they leave undone (a length beyond float's range
+// after rounding each component to float) a rescaling by 2^-e in double first, which is exact:
+// such a row gets the value the float formula gives its power-of-two multiple in range.
 bool normalizeDirection(const double* d, float* dst) {
-  double x = d[0], y = d[1], z = d[2];
-  double s = squaredLength(x, y, z);
-  if (!(s >= kLo && s <= kHi)) {
-    const double m = std::max({std::fabs(x), std::fabs(y), std::fabs(z)});
+  float x = static_cast<float>(d[0]), y = static_cast<float>(d[1]), z = static_cast<float>(d[2]);
+  float s = squaredLength(x, y, z);
+  if (!((s >= kLo) & (s <= kHi))) {
+    const double m = std::max({std::fabs(d[0]), std::fabs(d[1]), std::fabs(d[2])});
     if (!(m > 0.0)) return false;
     const int e = std::ilogb(m);
-    x = std::scalbn(x, -e), y = std::scalbn(y, -e), z = std::scalbn(z, -e);
+    x = static_cast<float>(std::scalbn(d[0], -e));
+    y = static_cast<float>(std::scalbn(d[1], -e));
+    z = static_cast<float>(std::scalbn(d[2], -e));
     s = squaredLength(x, y, z);
   }
-  unit(x, y, z, s, dst, dst + 1, dst + 2);
+  const float len = std::sqrt(s);
+  dst[0] = x / len, dst[1] = y / len, dst[2] = z / len;
   return true;
 }
 
