@@ -169,6 +169,10 @@ def _write(fig: Any, out: str, dpi: float) -> None:
     try:
         with os.fdopen(fd, "wb") as f:
             fig.savefig(f, format=ext[1:], dpi=dpi)
+        # mkstemp makes the file private (0600); the figure gets the mode any new file would.
+        umask = os.umask(0)
+        os.umask(umask)
+        os.chmod(tmp, 0o666 & ~umask)
         os.replace(tmp, out)
     except BaseException:
         os.unlink(tmp)

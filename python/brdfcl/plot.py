@@ -275,7 +275,8 @@ def halfdiff(materials: MaterialsLike, material: int = 0, *, resolution: int = 9
     """f over (θ_h, θ_d) at φ_d = 90°, φ_h = 0 (Rusinkiewicz's half/difference angles, see
     halfdiff_directions): an image on a logarithmic colour scale, as MERL and BRDF Explorer show
     BRDFs. Cells are resolution x resolution centres in [0, 90)°; cells where f is 0 are grey.
-    vmin defaults to 1e-4 of the largest value.
+    The colour scale spans the smallest positive value (at least 1e-8 of the largest) to the
+    largest unless vmin, vmax say otherwise.
 
     arrays: theta_h_deg (n,), theta_d_deg (n,), L, V float32 (n, n, 3) ([θ_d index, θ_h index]),
     f float32 (n, n, 3) (brdfcl.evaluate's result), value (n, n) the luminance or channel drawn.
@@ -293,7 +294,8 @@ def halfdiff(materials: MaterialsLike, material: int = 0, *, resolution: int = 9
     fig, a = _single_axes(ax, figsize, dpi)
     shown = np.ma.masked_where(~(value > 0) | ~np.isfinite(value), value)
     top = float(shown.max()) if shown.count() else 1.0
-    norm = LogNorm(vmin=vmin if vmin is not None else top * 1e-4, vmax=vmax if vmax is not None else top, clip=True)
+    low = max(float(shown.min()), top * 1e-8) if shown.count() else top * 1e-4
+    norm = LogNorm(vmin=vmin if vmin is not None else low, vmax=vmax if vmax is not None else top, clip=True)
     cmap = _cmap("viridis", bad="0.75")
     im = a.imshow(shown, origin="lower", extent=(0, 90, 0, 90), norm=norm, cmap=cmap, interpolation="nearest",
                   aspect="equal")
@@ -359,8 +361,8 @@ def sheen_e(*, size: int = 64, sheen_visibility: Optional[str] = None, sheen_dis
             figsize: Tuple[float, float] = (6, 5), dpi: float = 100, ax: Optional[Axes] = None,
             device: Device = None) -> Plot:
     """The sheen E table (brdfcl.lut("sheen-e")): E(N·V, sheen roughness), the white sheen lobe's
-    directional albedo, as a heat map with its E = 1 contour (where it reaches 1; the title says
-    when it does not). Texel (i, j) is at N·V = max(i / (size - 1), 1e-4), roughness
+    directional albedo, as a heat map (colours capped at E = 2) with its E = 1 contour (where it
+    reaches 1; the title says when it does not). Texel (i, j) is at N·V = max(i / (size - 1), 1e-4), roughness
     j / (size - 1), as the README's "Look-up tables" says.
 
     arrays: cos_theta_v (size,), roughness (size,), E float32 (size, size) (brdfcl.lut's result,
@@ -375,14 +377,17 @@ def sheen_e(*, size: int = 64, sheen_visibility: Optional[str] = None, sheen_dis
     arrays = {"cos_theta_v": x, "roughness": y, "E": e}
     fig, a = _single_axes(ax, figsize, dpi)
     half = 0.5 / (size - 1)
-    im = a.imshow(e, origin="lower", extent=(-half, 1 + half, -half, 1 + half), cmap="magma", aspect="auto",
-                  interpolation="nearest")
-    fig.colorbar(im, ax=a, label="E (directional albedo, unitless)")
     emax = float(np.nanmax(e))
+    # Capped at 2, so that the grazing, smooth corner (E up to ~6 for Charlie) leaves the rest
+    # of the table, and E = 1, readable; the colour bar's arrow marks the cap.
+    top = min(emax, 2.0)
+    im = a.imshow(e, origin="lower", extent=(-half, 1 + half, -half, 1 + half), cmap="magma", aspect="auto",
+                  interpolation="nearest", norm=Normalize(0.0, top))
+    fig.colorbar(im, ax=a, label="E (directional albedo, unitless)", extend="max" if emax > top else "neither")
     if float(np.nanmin(e)) < 1.0 < emax:
-        cs = a.contour(x, y, e, levels=[1.0], colors="white", linewidths=1.5)
+        cs = a.contour(x, y, e, levels=[1.0], colors="cyan", linewidths=1.5)
         a.clabel(cs, fmt="E = 1", fontsize=8)
-        note = "white: E = 1"
+        note = "cyan: E = 1"
     else:
         note = f"E {'<' if emax < 1 else '>'} 1 everywhere (max {emax:.3g}): no E = 1 contour"
     a.set_xlabel("N·V = cos θ_V (unitless)")
@@ -504,7 +509,7 @@ def image(radiance: Any = None, *, exposure: float = 0.0, gltf: Optional[Union[s
     if figsize is None:
         figsize = (6.0, max(1.0, 6.0 * h / w))
     fig, a = _single_axes(ax, figsize, dpi)
-    a.imshow(display, interpolation="nearest")
+    a.imshow(display)
     a.set_xticks([])
     a.set_yticks([])
     a.set_xlabel(f"{w} x {h} pixels")

@@ -3,6 +3,7 @@
 # brdfcl.evaluate / albedo / lut / render called directly; bad CLI input exits 2, one line, no file.
 import json
 import math
+import os
 import subprocess
 import sys
 
@@ -176,6 +177,9 @@ def test_cli_writes_each_kind(tmp_path, materials_file, kind):
     assert r.returncode == 0, r.stderr
     check_png(out)
     assert [p.name for p in tmp_path.iterdir()] == [out.name]  # no temporary file left
+    umask = os.umask(0)
+    os.umask(umask)
+    assert out.stat().st_mode & 0o777 == 0o666 & ~umask  # as any new file, not mkstemp's 0600
 
 
 def test_cli_svg_and_pdf(tmp_path, materials_file):
