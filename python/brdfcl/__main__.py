@@ -187,8 +187,10 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
             _fail(f"--out '{a.out}' must end in .png, .svg or .pdf")
         if os.path.isdir(a.out):
             _fail(f"--out '{a.out}' is a directory; name a file")
-        import matplotlib
-
+        try:
+            import matplotlib
+        except ImportError:
+            _fail("python -m brdfcl plot needs matplotlib 3.7 or newer; pip install matplotlib")
         matplotlib.use("Agg")  # files only: no display needed, none opened
         from . import Error
 

@@ -13,10 +13,15 @@ import os
 from typing import Any, Callable, Dict, Iterator, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
-from matplotlib.axes import Axes
-from matplotlib.colors import LogNorm, Normalize
-from matplotlib.figure import Figure
-from matplotlib.ticker import MaxNLocator
+
+try:
+    from matplotlib.axes import Axes
+    from matplotlib.colors import LogNorm, Normalize
+    from matplotlib.figure import Figure
+    from matplotlib.ticker import MaxNLocator
+except ImportError as e:  # the rest of brdfcl works without it
+    raise ImportError("brdfcl.plot needs matplotlib 3.7 or newer: pip install 'brdfcl[plot]' "
+                      "(or pip install matplotlib)") from e
 
 from . import _core, _materials, albedo as _albedo, evaluate as _evaluate, lut as _lut, render as _render
 from . import Error, Evaluator, LOBES, MaterialsLike

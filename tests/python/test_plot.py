@@ -101,6 +101,8 @@ def test_halfdiff(tmp_path):
     assert np.allclose(np.arccos(np.clip((H * L).sum(-1), -1, 1)), td, atol=1e-3)
     image = [c for c in fig.axes[0].get_children() if isinstance(c, AxesImage)][0]
     assert np.array_equal(np.ma.getdata(image.get_array()), a["value"])
+    # Only the cells where f is 0 are masked (grey): the coat is positive everywhere on the slice.
+    assert np.array_equal(np.ma.getmaskarray(image.get_array()), ~(a["value"] > 0)) and np.all(a["value"] > 0)
     assert image.norm.__class__.__name__ == "LogNorm" and fig.axes[0].get_xlabel() == "θ_h (degrees)"
 
 
