@@ -44,7 +44,7 @@ PROFILES = ("spec", "khronos", "threejs", "filament", "babylon", "materialx")
 LUT_KINDS = ("sheen-e", "ggx-dfg", "charlie-dfg")
 
 PathLike = Union[str, "os.PathLike[str]"]
-MaterialsLike = Union[PathLike, Mapping[str, Any], Sequence[Mapping[str, Any]]]
+MaterialsLike = Union[PathLike, Mapping[str, Any], Sequence[Mapping[str, Any]], "_core.Materials"]
 
 
 class BrdfclWarning(UserWarning):

@@ -8,6 +8,7 @@ import argparse
 import os
 import sys
 import tempfile
+import warnings
 from typing import Any, Callable, Dict, List, NoReturn, Optional, Sequence, Tuple
 
 FORMATS = (".png", ".svg", ".pdf")
@@ -179,7 +180,14 @@ def _write(fig: Any, out: str, dpi: float) -> None:
         raise
 
 
+def _show_warning(message: Any, category: Any, filename: str, lineno: int, file: Any = None,
+                  line: Optional[str] = None) -> None:
+    # The C++ CLI's form, one line, rather than Python's file:line report.
+    print("brdfcl: warning: " + " ".join(str(message).split()), file=sys.stderr)
+
+
 def main(argv: Optional[Sequence[str]] = None) -> int:
+    warnings.showwarning = _show_warning
     try:
         a = _parser().parse_args(argv)
         ext = os.path.splitext(a.out)[1].lower()

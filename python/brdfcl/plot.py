@@ -10,7 +10,7 @@ from __future__ import annotations
 import io
 import math
 import os
-from typing import Any, Callable, Dict, Iterator, List, Optional, Sequence, Tuple, Union
+from typing import Any, Callable, Dict, Iterator, List, Optional, Sequence, Tuple, Union, cast
 
 import numpy as np
 
@@ -26,7 +26,7 @@ except ImportError as e:  # the rest of brdfcl works without it
 from . import _core, _materials, albedo as _albedo, evaluate as _evaluate, lut as _lut, render as _render
 from . import Error, Evaluator, LOBES, MaterialsLike
 
-__all__ = ["Plot", "lobe", "halfdiff", "albedo", "sheen_e", "compare", "image", "tone_map", "KINDS"]
+__all__ = ["Plot", "lobe", "halfdiff", "halfdiff_directions", "albedo", "sheen_e", "compare", "image", "tone_map", "KINDS"]
 
 KINDS = ("lobe", "halfdiff", "albedo", "sheen-e", "compare", "image")
 CHANNELS = ("luminance", "r", "g", "b")
@@ -118,7 +118,7 @@ def _cell_centres_deg(n: int) -> np.ndarray:
 
 def _single_axes(ax: Optional[Axes], figsize: Tuple[float, float], dpi: float, **kw: Any) -> Tuple[Figure, Axes]:
     if ax is not None:
-        return ax.figure, ax  # type: ignore[return-value]
+        return cast(Figure, ax.figure), ax
     fig = _figure(figsize, dpi)
     return fig, fig.add_subplot(**kw)
 
@@ -175,8 +175,9 @@ def lobe(materials: MaterialsLike, material: int = 0, *, view_angles: Sequence[f
         arrays[f"f_{lb}"] = f
         arrays[f"r_{lb}"] = _channel(f, channel) * cos_l
 
+    axes: List[Any]  # PolarAxes
     if ax is not None:
-        fig, axes = ax.figure, [ax]
+        fig, axes = cast(Figure, ax.figure), [ax]
     else:
         fig = _figure(figsize, dpi)
         cols = min(len(views), 2 if len(views) == 4 else 3)
@@ -189,7 +190,7 @@ def lobe(materials: MaterialsLike, material: int = 0, *, view_angles: Sequence[f
         a.set_thetamin(-90)
         a.set_thetamax(90)
         peak = float(np.nanmax(arrays["r_all"][k])) if np.any(arrays["r_all"][k] > 0) else 1.0
-        to_radius, ticks, labels = _radial_scale(radius, peak, decades)
+        to_radius, ticks, tick_labels = _radial_scale(radius, peak, decades)
         bottom = np.zeros(n)
         for lb in LOBES[1:]:
             r = arrays[f"r_{lb}"][k]
@@ -204,9 +205,9 @@ def lobe(materials: MaterialsLike, material: int = 0, *, view_angles: Sequence[f
         top = float(to_radius(np.array([peak]))[0])
         a.set_rmax(top * 1.04)
         a.set_rmin(0)
-        if ticks is not None:
+        if ticks is not None and tick_labels is not None:
             a.set_rticks(ticks)
-            a.set_yticklabels(labels)
+            a.set_yticklabels(tick_labels)
         else:
             a.yaxis.set_major_locator(MaxNLocator(3))  # labels along the baseline: few fit
         a.set_xlabel("θ_L (degrees); radius f·cosθ_L (1/sr)", fontsize=7, labelpad=-8)
@@ -290,7 +291,8 @@ def halfdiff(materials: MaterialsLike, material: int = 0, *, resolution: int = 9
     n = _resolution(resolution, 2, 1024)
     theta = _cell_centres_deg(n)
     Ld, Vd = halfdiff_directions(theta, theta)
-    L, V = Ld.astype(np.float32), Vd.astype(np.float32)
+    L: np.ndarray = Ld.astype(np.float32)
+    V: np.ndarray = Vd.astype(np.float32)
     f = _evaluate(m, L.reshape(-1, 3), V.reshape(-1, 3), lobe=lobe, sheen_visibility=sheen_visibility,
                   sheen_distribution=sheen_distribution, sheen_scaling=sheen_scaling, profile=profile,
                   device=device).reshape(n, n, 3)
@@ -427,7 +429,7 @@ def compare(materials: MaterialsLike, material: int = 0, *, profile: str = "khro
     tl, tv = np.meshgrid(np.radians(theta), np.radians(theta))
     L = np.stack([-np.sin(tl), np.zeros_like(tl), np.cos(tl)], axis=-1).astype(np.float32)
     V = np.stack([np.sin(tv), np.zeros_like(tv), np.cos(tv)], axis=-1).astype(np.float32)
-    opts = dict(sheen_visibility=sheen_visibility, sheen_distribution=sheen_distribution,
+    opts: Dict[str, Any] = dict(sheen_visibility=sheen_visibility, sheen_distribution=sheen_distribution,
                 sheen_scaling=sheen_scaling, device=device)
     fa = _evaluate(m, L.reshape(-1, 3), V.reshape(-1, 3), lobe=lobe, profile=profile, **opts).reshape(n, n, 3)
     fb = _evaluate(m, L.reshape(-1, 3), V.reshape(-1, 3), lobe=lobe, profile=against, **opts).reshape(n, n, 3)

@@ -184,6 +184,15 @@ def test_cli_writes_each_kind(tmp_path, materials_file, kind):
     assert out.stat().st_mode & 0o777 == 0o666 & ~umask  # as any new file, not mkstemp's 0600
 
 
+def test_cli_warns_in_one_line(tmp_path):
+    typo = tmp_path / "typo.json"
+    typo.write_text(json.dumps({"materials": [{"pbrMetallicRoughness": {"roughnesFactor": 0.5}}]}))
+    r = run_cli("albedo", "--materials", typo, "--resolution", 3, "--out", tmp_path / "a.png")
+    assert r.returncode == 0, r.stderr
+    assert len(r.stderr.splitlines()) == 1 and r.stderr.startswith("brdfcl: warning: "), r.stderr
+    assert "did you mean roughnessFactor" in r.stderr
+
+
 def test_cli_svg_and_pdf(tmp_path, materials_file):
     for ext, magic in ((".svg", b"<?xml"), (".pdf", b"%PDF")):
         out = tmp_path / f"a{ext}"
