@@ -12,22 +12,26 @@ Errors raise brdfcl.Error (a ValueError) carrying the CLI's message. The GIL is 
 the device works; calls from several threads are safe.
 
 This file is the pure-Python front (argument checks and conversions, docstrings); the work is
-done by brdfcl._core, the nanobind module on the C++ host library. Plots will live in
-brdfcl/plot.py (brdfcl.plot), a separate task.
+done by brdfcl._core, the nanobind module on the C++ host library. Plots (matplotlib) live in
+brdfcl.plot, imported on first use so that `import brdfcl` needs no matplotlib.
 """
 from __future__ import annotations
 
+import importlib
 import json
 import math
 import os
 import threading
 import warnings
-from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple, Union
+from typing import TYPE_CHECKING, Any, Dict, List, Mapping, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
 from . import _core
 from ._core import Error
+
+if TYPE_CHECKING:
+    from . import plot as plot
 
 __all__ = [
     "Error", "BrdfclWarning", "Evaluator", "devices", "evaluate", "evaluate_grid", "albedo", "lut",
@@ -40,7 +44,7 @@ PROFILES = ("spec", "khronos", "threejs", "filament", "babylon", "materialx")
 LUT_KINDS = ("sheen-e", "ggx-dfg", "charlie-dfg")
 
 PathLike = Union[str, "os.PathLike[str]"]
-MaterialsLike = Union[PathLike, Mapping[str, Any], Sequence[Mapping[str, Any]]]
+MaterialsLike = Union[PathLike, Mapping[str, Any], Sequence[Mapping[str, Any]], "_core.Materials"]
 
 
 class BrdfclWarning(UserWarning):
@@ -264,11 +268,18 @@ class Evaluator:
         """Deferred shading of a G-buffer: float32 (H, W, 3) linear radiance. See brdfcl.shade."""
         g = _gbuffer(gbuffer, check)
         if isinstance(scene, Mapping):
-            s = _core.parse_scene(json.dumps(scene, default=_json_default), "<scene>", os.getcwd())
+            scene_name = "<scene>"
+            s = _core.parse_scene(json.dumps(scene, default=_json_default), scene_name, os.getcwd())
         elif isinstance(scene, (str, os.PathLike)):
-            s = _core.read_scene(os.fspath(scene))
+            scene_name = os.fspath(scene)
+            s = _core.read_scene(scene_name)
         else:
             raise Error(f"scene must be a path to a scene JSON file or a dict (docs/gbuffer.md), got {type(scene).__name__}")
+        # `brdfcl shade`'s warning about which camera shades (or that neither file has one).
+        gbuffer_name = os.fspath(gbuffer) if isinstance(gbuffer, (str, os.PathLike)) else _GBUFFER_NAME
+        camera_warning = _core.shade_camera_warning(scene_name, s, gbuffer_name, g)
+        if camera_warning:
+            _warn([camera_warning])
         return self._device.shade(g, s, profile, ibl, _int(ibl_samples, "ibl_samples"))
 
 
@@ -278,6 +289,9 @@ def _int(v: Any, name: str) -> int:
     return int(v)
 
 
+_GBUFFER_NAME = "<gbuffer>"  # how messages name a G-buffer given as a dict
+
+
 def _gbuffer(gbuffer: Any, check: bool) -> "_core.GBuffer":
     if isinstance(gbuffer, (str, os.PathLike)):
         return _core.read_gbuffer(os.fspath(gbuffer), bool(check))
@@ -285,7 +299,11 @@ def _gbuffer(gbuffer: Any, check: bool) -> "_core.GBuffer":
         channels: Dict[str, Any] = {}
         for k, v in gbuffer.items():
             channels[str(k)] = v if k == "camera" else np.ascontiguousarray(v, dtype=np.float32)
-        return _core.gbuffer_from_dict(channels)
+        g = _core.gbuffer_from_dict(channels)
+        if check:
+            # The range checks a G-buffer file gets (factors in [0, 1], unit normals), same words.
+            _core.check_gbuffer(g, _GBUFFER_NAME)
+        return g
     raise Error(f"gbuffer must be a path to a G-buffer EXR or a dict of channel arrays, got {type(gbuffer).__name__}")
 
 
@@ -414,10 +432,13 @@ def shade(gbuffer: Union[PathLike, Mapping[str, Any]], scene: Union[PathLike, Ma
     """Deferred shading of a G-buffer under a scene's lights and environment, as `brdfcl shade`:
     float32 (H, W, 3) linear radiance.
 
-    gbuffer: a G-buffer EXR path (checked as the CLI checks it unless check=False) or a dict of
-    channel arrays as brdfcl.read_gbuffer returns (docs/gbuffer.md names: P, N, baseColor,
-    metallic, roughness, mask required; (H, W, 3) vectors, (H, W) scalars; optional "camera").
+    gbuffer: a G-buffer EXR path or a dict of channel arrays as brdfcl.read_gbuffer returns
+    (docs/gbuffer.md names: P, N, baseColor, metallic, roughness, mask required; (H, W, 3)
+    vectors, (H, W) scalars; optional "camera"); either is range-checked as the CLI checks a file
+    (factors in [0, 1], unit normals on covered pixels) unless check=False.
     scene: a scene JSON path or the same JSON as a dict (docs/gbuffer.md, "Scene JSON").
+    Warns (BrdfclWarning) as the CLI does when the scene's camera differs from the G-buffer's, or
+    neither has one and the G-buffer no V.
     Conventions: world-space N per pixel, L towards the light, V towards the viewer, f without
     the cosine (the shader applies N.L).
     """
@@ -442,3 +463,14 @@ def write_gbuffer(path: PathLike, channels: Mapping[str, Any], *, half: bool = F
     """Writes {channel: array} (as read_gbuffer returns) as a G-buffer EXR, FLOAT (or HALF)
     channels under their docs/gbuffer.md names, atomically. Conventions as read_gbuffer."""
     _core.write_gbuffer(os.fspath(path), _gbuffer(channels, False), bool(half))
+
+
+def __getattr__(name: str) -> Any:
+    # brdfcl.plot on first use: matplotlib is needed by the plots only.
+    if name == "plot":
+        return importlib.import_module(".plot", __name__)
+    raise AttributeError(f"module 'brdfcl' has no attribute {name!r}")
+
+
+def __dir__() -> List[str]:
+    return sorted(list(globals()) + ["plot"])

@@ -446,6 +446,11 @@ NB_MODULE(_core, m) {
     return brdfcl::readGBuffer(path, o);
   }, "path"_a, "check"_a);
   m.def("gbuffer_from_dict", &gbufferFromDict, "channels"_a);
+  m.def("check_gbuffer", [](const brdfcl::GBuffer& g, const std::string& shown) {
+    nb::gil_scoped_release release;
+    brdfcl::checkGBufferValues(g, shown, "check=False");
+  }, "gbuffer"_a, "shown"_a);
+  m.def("shade_camera_warning", &brdfcl::shadeCameraWarning, "scene_name"_a, "scene"_a, "gbuffer_name"_a, "gbuffer"_a);
   m.def("gbuffer_to_dict", [](brdfcl::GBuffer g) { return gbufferToDict(std::move(g)); }, "gbuffer"_a);
   m.def("write_gbuffer", [](const std::string& path, const brdfcl::GBuffer& g, bool half) {
     nb::gil_scoped_release release;

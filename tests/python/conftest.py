@@ -20,6 +20,7 @@ def cli():
         assert r.returncode == 0, f"brdfcl {' '.join(map(str, args))}: {r.stderr}"
         return r.stdout
 
+    run.path = path  # for tests that read the CLI's stderr
     return run
 
 

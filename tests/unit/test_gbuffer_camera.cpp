@@ -496,6 +496,10 @@ TEST(GBufferCheck, OutOfRangeValuesAreErrorsNamingPixelAndChannel) {
     const std::string m = errorOf([&] { readGBuffer(p); });
     EXPECT_EQ(m.rfind(p + ": " + c.message, 0), 0u) << m;
     EXPECT_EQ(m.substr(m.size() - fix.size()), fix) << m;
+    // The check of a G-buffer in memory (Python's dict) says the same, naming its source and switch.
+    const std::string inMemory = errorOf([&] { checkGBufferValues(g, "<gbuffer>", "check=False"); });
+    EXPECT_EQ(inMemory, "<gbuffer>: " + m.substr(p.size() + 2, m.size() - p.size() - 2 - fix.size()) +
+                            "; fix the G-buffer or pass check=False");
     // Passes unchecked; and the same value on a background pixel is nobody's concern.
     GBufferReadOptions unchecked;
     unchecked.check = false;
@@ -503,6 +507,7 @@ TEST(GBufferCheck, OutOfRangeValuesAreErrorsNamingPixelAndChannel) {
     g.mask[i] = 0.0f;
     writeGBuffer(p, g);
     EXPECT_NO_THROW(readGBuffer(p)) << c.message;
+    EXPECT_NO_THROW(checkGBufferValues(g, "<gbuffer>", "check=False")) << c.message;
   }
   // The first failure in raster order is the one named.
   GBuffer g = validGBuffer(7, 5);

@@ -76,6 +76,12 @@ constexpr double kGBufferUnitTolerance = 1e-3;
 GBuffer readGBuffer(const std::string& path, const GBufferReadOptions& options);
 GBuffer readGBuffer(const std::string& path);
 
+// readGBuffer's value check (options.check) on a G-buffer made in memory, such as the Python
+// package's dict of channels: the first covered pixel (raster order) with a value outside its
+// documented range throws the same brdfcl::Error, with `shown` in place of the file name and
+// `skip` naming how to turn the check off ("--no-check" for the CLI, "check=False" for Python).
+void checkGBufferValues(const GBuffer& g, const std::string& shown, const std::string& skip);
+
 // Writes every non-empty channel under its canonical name (HALF when `half`, else FLOAT; ZIP
 // compression) and the camera's header attributes when it has one, atomically (see writeAtomically). A required channel that is empty or any
 // channel whose size is not width·height·(1 or 3) is a caller bug: std::invalid_argument.

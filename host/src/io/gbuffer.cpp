@@ -234,7 +234,7 @@ struct Source {
 // The first offending value in raster order (then in kFields order within the pixel), found by
 // all cores over bands of rows: a 4K G-buffer has 8 million pixels of up to 24 planes.
 void checkValues(const std::vector<std::vector<float>>& planes, const std::vector<Source>& sources,
-                 const std::vector<std::string>& names, int width, const std::string& shown) {
+                 const std::vector<std::string>& names, int width, const std::string& shown, const std::string& skip) {
   const std::vector<float>* mask = nullptr;
   for (const Source& s : sources)
     if (s.field->member == &GBuffer::mask) mask = &planes[s.firstPlane];
@@ -260,7 +260,7 @@ void checkValues(const std::vector<std::vector<float>>& planes, const std::vecto
           f = {i, shown + ": " + pixelName(i, width) + ": vector " + printable(first.substr(0, first.size() - 2)) +
                       " = (" + shortFloat(float(x)) + ", " + shortFloat(float(y)) + ", " + shortFloat(float(z)) +
                       ") has length " + length + ", not 1 within " + shortFloat(float(kGBufferUnitTolerance)) +
-                      "; fix the G-buffer or pass --no-check"};
+                      "; fix the G-buffer or pass " + skip};
           return true;
         }
         continue;
@@ -272,7 +272,7 @@ void checkValues(const std::vector<std::vector<float>>& planes, const std::vecto
         if (!ok) {
           f = {i, shown + ": " + pixelName(i, width) + ": channel " + printable(names[s.firstPlane + c]) + " = " +
                       shortFloat(v) + " is outside " + (fd.range == Range::Factor ? "[0, 1]" : "[0, inf)") +
-                      "; fix the G-buffer or pass --no-check"};
+                      "; fix the G-buffer or pass " + skip};
           return true;
         }
       }
@@ -337,6 +337,28 @@ void checkValues(const std::vector<std::vector<float>>& planes, const std::vecto
 }
 
 }  // namespace
+
+void checkGBufferValues(const GBuffer& g, const std::string& shown, const std::string& skip) {
+  // The planes, sources and canonical channel names readGBuffer would have had from a file.
+  const std::size_t n = g.pixelCount();
+  std::vector<std::vector<float>> planes;
+  std::vector<Source> sources;
+  std::vector<std::string> names;
+  for (const Field& f : kFields) {
+    const std::vector<float>& v = g.*(f.member);
+    if (v.empty()) continue;
+    const std::size_t k = std::max<std::size_t>(1, std::char_traits<char>::length(f.suffixes));
+    if (v.size() != k * n) throw std::invalid_argument(std::string("checkGBufferValues: ") + f.name + " has the wrong size");
+    sources.push_back({&f, planes.size()});
+    for (const std::string& name : channelNames(f.name, f.suffixes)) names.push_back(name);
+    for (std::size_t c = 0; c < k; ++c) {
+      std::vector<float> plane(n);
+      for (std::size_t i = 0; i < n; ++i) plane[i] = v[k * i + c];
+      planes.push_back(std::move(plane));
+    }
+  }
+  checkValues(planes, sources, names, g.width, shown, skip);
+}
 
 GBuffer readGBuffer(const std::string& path) { return readGBuffer(path, GBufferReadOptions{}); }
 
@@ -407,7 +429,7 @@ GBuffer readGBuffer(const std::string& path, const GBufferReadOptions& options) 
                     (std::isnan(v) ? "nan" : v > 0 ? "inf" : "-inf") + ") in channel '" + printable(chosenNames[p]) +
                     "'; fix the renderer's output");
       }
-  if (options.check) checkValues(planes, sources, chosenNames, g.width, shown);
+  if (options.check) checkValues(planes, sources, chosenNames, g.width, shown, "--no-check");
   for (const Source& s : sources) {
     const std::size_t k = std::max<std::size_t>(1, std::char_traits<char>::length(s.field->suffixes));
     std::vector<float>& out = g.*(s.field->member);
