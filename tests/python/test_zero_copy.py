@@ -30,10 +30,14 @@ SCRIPT = textwrap.dedent("""
     materials = brdfcl._materials(MATERIALS, False)
     brdfcl.evaluate(materials, L[:4096], V[:4096], idx[:4096])  # programs built, tables baked
     before = hwm()
+    out = brdfcl.evaluate(materials, L, V, idx)
+    growth = hwm() - before
+    # Timed on a repeat call, as a user's loop runs: the batch planes come from the evaluator's
+    # pool, and only the new result array is fresh memory.
+    del out
     t0 = time.perf_counter()
     out = brdfcl.evaluate(materials, L, V, idx)
     seconds = time.perf_counter() - t0
-    growth = hwm() - before
     planes = np.concatenate([L.T, V.T]).astype("<f4")
     planes[:, :4194304].tofile(sys.argv[3])
     print(json.dumps({"growth": growth, "out": out.nbytes, "seconds": seconds, "n": n}))
@@ -62,12 +66,13 @@ def test_throughput_vs_bench(measured, cli):
     """Python's samples/s against `brdfcl bench --pairs` (kernel only, in memory, its own random
     materials) on the first 4M of the same pairs.
 
-    NOT MET: the issue asks for within 10 %; measured on PoCL, 2 cores: ~0.2 (25.6 vs 117 M
-    samples/s). Python pays what `brdfcl eval` pays and the bench does not: each row checked
-    and normalized in double with divisions (as the samples readers do it, which bit-identity
-    requires) and the AoS <-> SoA copies. The 10 % bound is asserted only with
-    BRDFCL_STRICT_PERF=1 (it fails today); otherwise the ratio is printed and must reach 0.1,
-    a guard against gross regressions. README.md, "Python", has the figures."""
+    NOT MET: the issue asks for within 10 %; measured on PoCL, 2 cores, on a repeat call: ~0.45
+    (57 vs 134 M samples/s). Python pays what `brdfcl eval` pays and the bench does not: each
+    row checked and normalized (vectorized, io/directions.hpp) into the SoA planes and the
+    results copied back to (N, 3) rows, ~3x the kernel's own memory traffic, on the same two
+    cores the kernel uses. The 10 % bound is asserted only with BRDFCL_STRICT_PERF=1 (it fails
+    today); otherwise the ratio is printed and must reach 0.2, a guard against regressions.
+    README.md, "Python", and bench/README.md ("The library and files") have the figures."""
     import os
     m, pairs = measured
     bench = json.loads(cli("bench", "--pairs", pairs, "--runs", 3, "--json"))
@@ -75,4 +80,4 @@ def test_throughput_vs_bench(measured, cli):
     ratio = (m["n"] / m["seconds"]) / bench[key]
     print(f"\npython {m['n'] / m['seconds'] / 1e6:.2f} M samples/s, brdfcl bench {bench[key] / 1e6:.2f} M samples/s,"
           f" ratio {ratio:.2f}")
-    assert ratio >= (0.9 if os.environ.get("BRDFCL_STRICT_PERF") == "1" else 0.1)
+    assert ratio >= (0.9 if os.environ.get("BRDFCL_STRICT_PERF") == "1" else 0.2)
