@@ -86,8 +86,9 @@ class Evaluator {
   struct Planes;  // a batch's page-aligned host planes and the device buffers wrapping them
   Batch prepare(const std::vector<MaterialParams>& materials);
   // The pool of planes scratch batches reuse, so that repeated calls neither allocate nor fault
-  // fresh pages: take returns idle planes of exactly `floats` per plane, or nullptr.
-  std::unique_ptr<Planes> takePlanes(std::size_t floats);
+  // fresh pages: take returns idle planes of exactly `floats` per plane (and as many planes:
+  // single = 1 for the grid's one-plane sets), or nullptr.
+  std::unique_ptr<Planes> takePlanes(std::size_t floats, int single);
   void givePlanes(std::unique_ptr<Planes> planes);
 
   Runtime& rt_;

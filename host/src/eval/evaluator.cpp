@@ -113,19 +113,25 @@ Evaluator::Evaluator(Runtime& rt, EvalOptions options) : rt_(rt), options_(optio
 // buffers that hand them to the device in place; the buffers go before the memory they wrap.
 struct Evaluator::Planes {
   std::size_t floats = 0;
+  int single = 0;
   float* host[9] = {};
   std::uint32_t* index = nullptr;
   cl::Buffer buffers[9], indexBuffer;
 
-  Planes(const cl::Context& ctx, std::size_t n) : floats(n) {
+  // A batch's nine planes and its index, or (single) one read-write plane alone, for the grid.
+  Planes(const cl::Context& ctx, std::size_t n, int single = 0) : floats(n), single(single) {
     try {
-      for (auto& p : host) p = allocPages<float>(n);
-      index = allocPages<std::uint32_t>(n);
+      for (int k = 0; k < (single ? 1 : 9); ++k) host[k] = allocPages<float>(n);
+      if (!single) index = allocPages<std::uint32_t>(n);
     } catch (...) {
       release();
       throw;
     }
     try {
+      if (single) {
+        buffers[0] = cl::Buffer(ctx, CL_MEM_READ_WRITE | CL_MEM_USE_HOST_PTR, n * 4, host[0]);
+        return;
+      }
       for (int k = 0; k < 9; ++k)
         buffers[k] = cl::Buffer(ctx, (k < 6 ? CL_MEM_READ_ONLY : CL_MEM_WRITE_ONLY) | CL_MEM_USE_HOST_PTR, n * 4, host[k]);
       indexBuffer = cl::Buffer(ctx, CL_MEM_READ_ONLY | CL_MEM_USE_HOST_PTR, n * 4, index);
@@ -149,10 +155,10 @@ struct Evaluator::Planes {
 
 Evaluator::~Evaluator() = default;
 
-std::unique_ptr<Evaluator::Planes> Evaluator::takePlanes(std::size_t floats) {
+std::unique_ptr<Evaluator::Planes> Evaluator::takePlanes(std::size_t floats, int single) {
   std::lock_guard<std::mutex> lock(poolMutex_);
   for (auto it = pool_.begin(); it != pool_.end(); ++it)
-    if ((*it)->floats == floats) {
+    if ((*it)->floats == floats && (*it)->single == single) {
       auto planes = std::move(*it);
       pool_.erase(it);
       return planes;
@@ -247,7 +253,7 @@ SoaBatch::SoaBatch(Evaluator& evaluator, const std::vector<MaterialParams>& mate
   // work-group size never reads past them. Pooled planes of the same size were padded alike,
   // and no batch writes past its capacity, so their padding is still zero.
   allocated_ = roundUp(capacity_, kLanes * device_->local);
-  if (pooled_) set_ = ev_.takePlanes(allocated_);
+  if (pooled_) set_ = ev_.takePlanes(allocated_, 0);
   if (!set_) set_ = std::make_unique<Evaluator::Planes>(ev_.rt_.context(), allocated_);
   for (int k = 0; k < 9; ++k) planes_[k] = set_->host[k];
   index_ = set_->index;
@@ -414,34 +420,61 @@ std::vector<float> Evaluator::evaluateGrid(const std::vector<MaterialParams>& ma
 
   try {
     Batch b = prepare(materials);
-    cl::KernelFunctor<cl::Buffer, cl_uint, cl::Buffer, cl_uint, cl::Buffer, int, cl::Buffer> kernel(b.program,
-                                                                                                  "eval_grid");
-    const auto& ctx = rt_.context();
+    cl::Kernel kernel(b.program, "eval_grid");
     // Directions in chunks; within a chunk, materials in groups whose output fits one launch.
     const std::size_t chunk = std::min(roundUp(n, kLanes), chunkSize(rt_, 6 * 4));
     const std::size_t outLimit = chunkSize(rt_, 3 * 4);
     const std::size_t materialsPerLaunch = std::max<std::size_t>(1, std::min(nm, outLimit / chunk));
-    cl::Buffer bDirs(ctx, CL_MEM_READ_ONLY, 6 * chunk * 4);
-    cl::Buffer bOut(ctx, CL_MEM_WRITE_ONLY, 3 * chunk * materialsPerLaunch * 4);
-    std::vector<float> planes(6 * chunk), out(3 * chunk * materialsPerLaunch);
+    // Two pooled planes sets used in place (zero copy on CPU devices): the six direction planes
+    // in the first, the r g b planes of every material of a launch in the second.
+    std::unique_ptr<Planes> dirs = takePlanes(roundUp(6 * chunk, kPage / 4), 1);
+    if (!dirs) dirs = std::make_unique<Planes>(rt_.context(), roundUp(6 * chunk, kPage / 4), 1);
+    std::unique_ptr<Planes> outs = takePlanes(roundUp(3 * chunk * materialsPerLaunch, kPage / 4), 1);
+    if (!outs) outs = std::make_unique<Planes>(rt_.context(), roundUp(3 * chunk * materialsPerLaunch, kPage / 4), 1);
     auto& q = rt_.queue();
+    // Declared after the planes, so destroyed before them: on an error the device finishes
+    // with their memory before it is freed.
+    struct Drain {
+      cl::CommandQueue& q;
+      ~Drain() { q.finish(); }
+    } drain{q};
     for (std::size_t first = 0; first < n; first += chunk) {
       const std::size_t count = std::min(chunk, n - first);
       const std::size_t stride = roundUp(count, kLanes);
-      std::fill(planes.begin(), planes.end(), 0.0f);
-      fillDirectionPlanes(samples, first, count, stride, planes.data());
-      q.enqueueWriteBuffer(bDirs, CL_FALSE, 0, 6 * stride * 4, planes.data());
+      float* planes = dirs->host[0];
+      fillDirectionPlanes(samples, first, count, stride, planes);
+      for (int k = 0; k < 6; ++k) std::fill(planes + k * stride + count, planes + (k + 1) * stride, 0.0f);
+      void* p = q.enqueueMapBuffer(dirs->buffers[0], CL_FALSE, CL_MAP_WRITE, 0, 6 * stride * 4);
+      q.enqueueUnmapMemObject(dirs->buffers[0], p);
       for (std::size_t m0 = 0; m0 < nm; m0 += materialsPerLaunch) {
         const std::size_t mc = std::min(materialsPerLaunch, nm - m0);
-        kernel(cl::EnqueueArgs(q, cl::NDRange(stride / std::size_t(kernelWidth()), mc)), bDirs, cl_uint(stride), b.materials,
-               cl_uint(firstMaterial + m0), b.tableBuffer, b.tableSize, bOut);
+        int arg = 0;
+        kernel.setArg(arg++, dirs->buffers[0]);
+        kernel.setArg(arg++, cl_uint(stride));
+        kernel.setArg(arg++, b.materials);
+        kernel.setArg(arg++, cl_uint(firstMaterial + m0));
+        kernel.setArg(arg++, b.tableBuffer);
+        kernel.setArg(arg++, b.tableSize);
+        kernel.setArg(arg++, outs->buffers[0]);
+        q.enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(stride / std::size_t(kernelWidth()), mc));
         const std::size_t plane = stride * mc;
-        q.enqueueReadBuffer(bOut, CL_TRUE, 0, 3 * plane * 4, out.data());
-        for (std::size_t m = 0; m < mc; ++m)
-          for (std::size_t i = 0; i < count; ++i)
-            for (int c = 0; c < 3; ++c) rgb[3 * ((m0 + m) * n + first + i) + c] = out[c * plane + m * stride + i];
+        void* r = q.enqueueMapBuffer(outs->buffers[0], CL_TRUE, CL_MAP_READ, 0, 3 * plane * 4);
+        const float* out = outs->host[0];
+        for (std::size_t m = 0; m < mc; ++m) {
+          const float* pr = out + m * stride;
+          float* dst = rgb.data() + 3 * ((m0 + m) * n + first);
+          for (std::size_t i = 0; i < count; ++i) {
+            dst[3 * i] = pr[i];
+            dst[3 * i + 1] = pr[plane + i];
+            dst[3 * i + 2] = pr[2 * plane + i];
+          }
+        }
+        q.enqueueUnmapMemObject(outs->buffers[0], r);
       }
     }
+    q.finish();
+    givePlanes(std::move(dirs));
+    givePlanes(std::move(outs));
   } catch (const cl::Error&) {
     rethrowOpenCL("evaluating the material x direction grid");
   }
