@@ -94,6 +94,26 @@ void checkDirections(const Samples& s) {
     }
 }
 
+// Interleaved x y z rows to three planes and back, one pass each; the planes never alias the
+// rows, which lets the compiler vectorize both loops.
+void toPlanes(const float* __restrict rows, std::size_t n, float* __restrict x, float* __restrict y,
+              float* __restrict z) {
+  for (std::size_t i = 0; i < n; ++i) {
+    x[i] = rows[3 * i];
+    y[i] = rows[3 * i + 1];
+    z[i] = rows[3 * i + 2];
+  }
+}
+
+void toRows(const float* __restrict x, const float* __restrict y, const float* __restrict z, std::size_t n,
+            float* __restrict rows) {
+  for (std::size_t i = 0; i < n; ++i) {
+    rows[3 * i] = x[i];
+    rows[3 * i + 1] = y[i];
+    rows[3 * i + 2] = z[i];
+  }
+}
+
 // Lays samples [first, first + count) out as the 6 planes the kernels read.
 void fillDirectionPlanes(const Samples& s, std::size_t first, std::size_t count, std::size_t stride, float* planes) {
   for (std::size_t i = 0; i < count; ++i) {
@@ -388,19 +408,12 @@ void SoaBatch::evaluate(const Samples& samples, float* rgb) {
       for (auto* p : planes) std::fill(p + count, p + chunk, 0.0f);
       std::fill(index + count, index + chunk, 0u);
     }
-    for (std::size_t i = 0; i < count; ++i) {
-      for (int c = 0; c < 3; ++c) {
-        planes[c][i] = samples.L[3 * (first + i) + c];
-        planes[3 + c][i] = samples.V[3 * (first + i) + c];
-      }
-      index[i] = samples.material[first + i];
-    }
+    toPlanes(samples.L.data() + 3 * first, count, planes[0], planes[1], planes[2]);
+    toPlanes(samples.V.data() + 3 * first, count, planes[3], planes[4], planes[5]);
+    std::copy_n(samples.material.data() + first, count, index);
     setCount(count);
     run();
-    for (int c = 0; c < 3; ++c) {
-      const float* plane = result(c);
-      for (std::size_t i = 0; i < count; ++i) rgb[3 * (first + i) + c] = plane[i];
-    }
+    toRows(result(0), result(1), result(2), count, rgb + 3 * first);
   }
 }
 
