@@ -123,32 +123,47 @@ void BM_InMemory(benchmark::State& state, std::string lobe, InMemory path) {
   state.SetItemsProcessed(std::int64_t(state.iterations()) * std::int64_t(n));
 }
 
-// `brdfcl eval` on a float32 NPY file of n samples (all layers), file to file: reading and
-// writing overlapped with evaluation (the default) against the same steps one after another.
-// The input is written once per process to the temp directory and the output replaced each run.
-void BM_EvalFile(benchmark::State& state, bool overlap) {
+// `brdfcl eval` file to file on n samples (all layers): a float32 NPY to an NPY result, with
+// reading and writing overlapped with evaluation (the default) or the same steps one after
+// another; `csv` is the overlapped run on the same rows as CSV in and out. The input is written
+// once per process to the temp directory and the output replaced each run.
+enum class FileMode { Overlapped, Serial, Csv };
+void BM_EvalFile(benchmark::State& state, FileMode mode) {
   const std::size_t n = std::size_t(state.range(0));
   const auto w = bench::makeWorkload("all");
+  const bool csv = mode == FileMode::Csv;
   const std::string dir = (std::getenv("TMPDIR") ? std::getenv("TMPDIR") : "/tmp");
-  const std::string in = dir + "/brdfcl-bench-" + std::to_string(::getpid()) + "-" + std::to_string(n) + ".npy";
-  const std::string out = dir + "/brdfcl-bench-" + std::to_string(::getpid()) + "-out.npy";
+  const std::string stem = dir + "/brdfcl-bench-" + std::to_string(::getpid()) + "-";
+  const std::string in = stem + std::to_string(n) + (csv ? ".csv" : ".npy");
+  const std::string out = stem + (csv ? "out.csv" : "out.npy");
   {
-    std::string dict = "{'descr': '<f4', 'fortran_order': False, 'shape': (" + std::to_string(n) + ", 7), }";
-    dict.append(63 - (10 + dict.size()) % 64, ' ');
-    dict += '\n';
     std::ofstream f(in, std::ios::binary);
-    f << std::string("\x93NUMPY\x01\x00", 8) << char(dict.size() & 0xff) << char(dict.size() >> 8) << dict;
+    if (csv) {
+      f << "material,Lx,Ly,Lz,Vx,Vy,Vz\n";
+    } else {
+      std::string dict = "{'descr': '<f4', 'fortran_order': False, 'shape': (" + std::to_string(n) + ", 7), }";
+      dict.append(63 - (10 + dict.size()) % 64, ' ');
+      dict += '\n';
+      f << std::string("\x93NUMPY\x01\x00", 8) << char(dict.size() & 0xff) << char(dict.size() >> 8) << dict;
+    }
     std::mt19937 rng(1);
     std::uniform_real_distribution<float> u(-1.0f, 1.0f);
     std::vector<float> row(7);
+    char text[160];
     for (std::size_t i = 0; i < n; ++i) {
       row = {float(i % w.materials.size()), u(rng), u(rng), 1.5f + u(rng), u(rng), u(rng), 1.5f + u(rng)};
-      f.write(reinterpret_cast<const char*>(row.data()), 28);
+      if (csv) {
+        const int len = std::snprintf(text, sizeof text, "%d,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g\n", int(row[0]), row[1],
+                                      row[2], row[3], row[4], row[5], row[6]);
+        f.write(text, len);
+      } else {
+        f.write(reinterpret_cast<const char*>(row.data()), 28);
+      }
     }
   }
   Evaluator ev(runtime(), w.options);
   StreamOptions o;
-  o.overlap = overlap;
+  o.overlap = mode != FileMode::Serial;
   const auto run = [&] {
     SampleStream samples(in, w.materials.size(), false);
     ResultWriter writer(out);
@@ -158,7 +173,7 @@ void BM_EvalFile(benchmark::State& state, bool overlap) {
   run();  // program build, E table and page cache stay out of the timing
   for (auto _ : state) run();
   state.SetItemsProcessed(std::int64_t(state.iterations()) * std::int64_t(n));
-  state.SetBytesProcessed(std::int64_t(state.iterations()) * std::int64_t(n) * (28 + 12));
+  if (!csv) state.SetBytesProcessed(std::int64_t(state.iterations()) * std::int64_t(n) * (28 + 12));
   std::remove(in.c_str());
   std::remove(out.c_str());
 }
@@ -206,8 +221,12 @@ void registerAll() {
   }
   benchmark::RegisterBenchmark("BM_StreamTriad", BM_StreamTriad)->Arg(1 << 25)->Iterations(1)->UseRealTime();
   benchmark::RegisterBenchmark("BM_EvalGrid", BM_EvalGrid)->Arg(1 << 14)->UseRealTime()->Unit(benchmark::kMillisecond);
-  for (const bool overlap : {true, false})
-    benchmark::RegisterBenchmark(overlap ? "BM_EvalFile/overlapped" : "BM_EvalFile/serial", BM_EvalFile, overlap)
+  // Next to the kernel alone on the same workload (all layers, 256 materials), in one run.
+  benchmark::RegisterBenchmark("BM_EvalFile/kernel", BM_Eval, std::string("all"))->Arg(1 << 23)->UseRealTime()
+      ->Unit(benchmark::kMillisecond);
+  for (auto [name, mode] : {std::pair{"overlapped", FileMode::Overlapped}, std::pair{"serial", FileMode::Serial},
+                            std::pair{"csv", FileMode::Csv}})
+    benchmark::RegisterBenchmark((std::string("BM_EvalFile/") + name).c_str(), BM_EvalFile, mode)
         ->Arg(1 << 23)->UseRealTime()->Unit(benchmark::kMillisecond);
   benchmark::RegisterBenchmark("BM_Shade", BM_Shade)->Arg(512)->UseRealTime()->Unit(benchmark::kMillisecond);
   benchmark::RegisterBenchmark("BM_LutBake", BM_LutBake)->Arg(64)->UseRealTime()->Unit(benchmark::kMillisecond);

@@ -4,8 +4,8 @@ on an OpenCL device, for numpy arrays; look-up tables and renders as arrays.
 Conventions (every function): directions live in the shading frame N = +Z, T = +X, B = +Y;
 L points from the surface towards the light, V towards the viewer; f is the BRDF in 1/sr
 *without* the cosine N.L. Directions need not be unit length: each row is normalized as
-`brdfcl eval` normalizes its samples (in double, dividing by the largest component first, then
-rounded to float32), so the results equal the CLI's bit for bit. A direction at or below the
+`brdfcl eval` normalizes its samples (x / sqrt(x*x + y*y + z*z) in float32, with an exact
+power-of-two rescaling of vectors beyond float's range), so the results equal the CLI's bit for bit. A direction at or below the
 horizon gives f = 0.
 
 Errors raise brdfcl.Error (a ValueError) carrying the CLI's message. The GIL is released while
@@ -336,7 +336,7 @@ def evaluate(materials: MaterialsLike, L: Any, V: Any, material_index: Any = Non
     """f(L, V) of glTF materials per sample: float32 array (N, 3), rgb in 1/sr, without the cosine.
 
     Conventions: shading frame N = +Z, T = +X, B = +Y; L (N, 3) points towards the light, V (N, 3)
-    towards the viewer; rows need not be unit length (normalized as `brdfcl eval` does, in double)
+    towards the viewer; rows need not be unit length (normalized as `brdfcl eval` does)
     but must be finite and non-zero. C-contiguous float32 or float64 arrays are read in place (no
     copy, whatever N); other number types are converted. Results equal `brdfcl eval` on the same
     numbers bit for bit.
