@@ -4,7 +4,7 @@ PRESET ?= release
 JOBS ?= $(shell nproc)
 FUZZ_SECONDS ?= 60
 
-.PHONY: deps configure build test test-python test-asan fuzz demo bench bench-peers clean
+.PHONY: deps configure build test test-python test-devices test-asan fuzz demo bench bench-peers clean
 
 deps:
 	@scripts/install-deps
@@ -30,6 +30,12 @@ test-python: build
 	@$(VENV)/bin/python -m pip install -q --disable-pip-version-check -r python/requirements.txt
 	@CMAKE_BUILD_PARALLEL_LEVEL=$(JOBS) $(VENV)/bin/python -m pip install -q --disable-pip-version-check --no-build-isolation .
 	@BRDFCL_CLI=$(CURDIR)/build/bin/brdfcl $(VENV)/bin/python -m pytest -q tests/python
+
+# The accuracy, edge and shading tests once per OpenCL device (scripts/test-devices), Intel's
+# CPU runtime included when scripts/install-intel-opencl has installed it into build/.
+test-devices: configure
+	@cmake --build --preset $(PRESET) -j $(JOBS) --target brdfcl brdfcl-tests
+	@scripts/test-devices
 
 # The host code and tests under AddressSanitizer + UndefinedBehaviorSanitizer (build-asan/).
 test-asan: deps

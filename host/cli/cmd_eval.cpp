@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <string>
 
+#include "brdfcl/device_set.hpp"
 #include "brdfcl/error.hpp"
 #include "brdfcl/evaluator.hpp"
 #include "brdfcl/io.hpp"
@@ -20,6 +21,16 @@ struct EvalArgs {
   bool grid = false, strict = false;
   long long chunk = static_cast<long long>(StreamOptions::kDefaultChunk);
 };
+
+// --device all or a list (0,2): every chunk split across the devices (brdfcl/device_set.hpp).
+void evaluateOnDevices(const std::string& devices, const EvalOptions& o, const std::vector<MaterialParams>& materials,
+                       SampleStream& samples, const std::string& outPath, const StreamOptions& so) {
+  DeviceSet set(devices);
+  MultiEvaluator evaluator(set, o);
+  ResultWriter out(outPath);
+  evaluateStream(evaluator, materials, samples, out, so);
+  out.commit();
+}
 }  // namespace
 
 void addEvalCommand(CLI::App& app) {
@@ -37,7 +48,9 @@ void addEvalCommand(CLI::App& app) {
   cmd->add_option("--chunk", args->chunk,
                   "samples per chunk (default " + std::to_string(StreamOptions::kDefaultChunk) +
                       "); memory stays bounded by a few chunks whatever the file size");
-  cmd->add_option("--device", args->device, "device index or name substring (default $BRDFCL_DEVICE, then 0)");
+  cmd->add_option("--device", args->device,
+                  "device index or name substring (default $BRDFCL_DEVICE, then 0), or all, or a list such as 0,2 "
+                  "to split the work across devices");
   cmd->callback([args] {
     checkResultsPath("--out", args->out);
     EvalOptions o = modelOptions(args->model);
@@ -48,12 +61,13 @@ void addEvalCommand(CLI::App& app) {
     auto materials = readUserMaterials(args->materials, args->strict);
     // The header is checked before the device is set up; rows are checked as they stream.
     SampleStream samples(args->samples, args->grid ? 0 : materials.size(), args->grid);
-    Runtime rt(args->device);
-    Evaluator evaluator(rt, o);
-    ResultWriter out(args->out);
     StreamOptions so;
     so.chunk = static_cast<std::size_t>(args->chunk);
     so.grid = args->grid;
+    if (isDeviceList(args->device)) return evaluateOnDevices(args->device, o, materials, samples, args->out, so);
+    Runtime rt(args->device);
+    Evaluator evaluator(rt, o);
+    ResultWriter out(args->out);
     evaluateStream(evaluator, materials, samples, out, so);
     out.commit();
   });

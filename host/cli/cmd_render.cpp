@@ -14,6 +14,7 @@
 
 #include "brdfcl/demo_asset.hpp"
 #include "brdfcl/frame_budget.hpp"
+#include "brdfcl/device_set.hpp"
 #include "brdfcl/error.hpp"
 #include "brdfcl/gbuffer.hpp"
 #include "brdfcl/gltf.hpp"
@@ -197,11 +198,18 @@ struct ProfileArgs {
   }
 };
 
-Image renderGltf(Runtime& rt, const LoadedAsset& l, const Scene& lighting, int spp, const std::string& gbufferOut,
+// "pthread-... CPU", or the devices of a list joined by " + ".
+std::string deviceNames(DeviceSet& devices) {
+  std::string names;
+  for (std::size_t k = 0; k < devices.size(); ++k) names += (k ? " + " : "") + devices.runtime(k).info().name;
+  return names;
+}
+
+Image renderGltf(DeviceSet& devices, const LoadedAsset& l, const Scene& lighting, int spp, const std::string& gbufferOut,
                  const ShadeOptions& shadeOptions = {}, const EvalOptions& model = {}) {
   const gltf::Raycaster raycaster(l.asset);
   ShadeStats stats;
-  const Image img = renderFramedAsset(rt, l, raycaster, lighting, spp, shadeOptions, model, progressLine("brdfcl render", "sample"), &stats);
+  const Image img = renderFramedAsset(devices, l, raycaster, lighting, spp, shadeOptions, model, progressLine("brdfcl render", "sample"), &stats);
   if (shadeOptions.ibl == IblMode::Exact) std::fprintf(stderr, "%s\n", exactIblSummary(stats).c_str());
   if (!gbufferOut.empty()) writeGBuffer(gbufferOut, raycaster.trace(l.view, l.width, l.height));
   return img;
@@ -256,7 +264,7 @@ void addRenderCommands(CLI::App& app) {
     cmd->add_option("--png", a->png, "also a tone-mapped sRGB PNG");
     cmd->add_option("--exr", a->exr, "also the linear radiance as .exr");
     cmd->add_option("--exposure", a->exposure, "exposure in stops for the PNG (default 0)");
-    cmd->add_option("--device", a->device, "device index or name substring");
+    cmd->add_option("--device", a->device, "device index or name substring, or all, or a list such as 0,2 to shade row bands on several devices");
     cmd->add_flag("--no-check", a->noCheck, "skip the G-buffer's range checks (factors in [0, 1], unit normals)");
     a->ibl.add(cmd);
     a->profile.add(cmd, false);
@@ -288,8 +296,8 @@ void addRenderCommands(CLI::App& app) {
       if (const std::string w = shadeCameraWarning(a->scene, scene, a->gbuffer, g); !w.empty())
         printWarning(w);
       checkFrameFits(FrameJob::Shade, g.width, g.height, usableHostMemory(), a->gbuffer);
-      Runtime rt(a->device);
-      Shader shader(rt, scene, model);
+      DeviceSet devices(a->device);
+      Shader shader(devices, scene, model);
       writeImages(shadeWith(shader, g, shadeOptions), exr, png, a->exposure);
     });
   }
@@ -316,7 +324,7 @@ void addRenderCommands(CLI::App& app) {
     cmd->add_option("--out", a->out, "output tone-mapped .png, or linear radiance .exr (with --diff-against: the difference picture, .png)")->required();
     cmd->add_option("--exr", a->exr, "also the linear radiance as .exr");
     cmd->add_option("--gbuffer", a->gbuffer, "also the pixel-centre G-buffer as .exr");
-    cmd->add_option("--device", a->device, "device index or name substring");
+    cmd->add_option("--device", a->device, "device index or name substring, or all, or a list such as 0,2 to shade row bands on several devices");
     cmd->callback([a, cmd] {
       const EvalOptions model = a->profile.options();
       const bool diff = cmd->count("--diff-against") > 0;
@@ -365,9 +373,9 @@ void addRenderCommands(CLI::App& app) {
         const Scene lighting =
             gltf::frameLighting(l.asset, l.view, a->lighting.lights, environment, a->lighting.environmentGiven);
         checkFrameFits(FrameJob::Render, l.width, l.height, usableHostMemory());
-        Runtime rt(a->device);
-        finish(renderGltf(rt, l, lighting, a->spp, a->gbuffer, shadeOptions, model),
-               [&] { return renderGltf(rt, l, lighting, a->spp, "", shadeOptions, against); });
+        DeviceSet devices(a->device);
+        finish(renderGltf(devices, l, lighting, a->spp, a->gbuffer, shadeOptions, model),
+               [&] { return renderGltf(devices, l, lighting, a->spp, "", shadeOptions, against); });
         return;
       }
       a->gltf.checkBuiltin(cmd);
@@ -378,12 +386,12 @@ void addRenderCommands(CLI::App& app) {
       if (a->lighting.environmentGiven) scene.environment = environment;
       gltf::applyLightsOption(scene, a->lighting.lights, a->lighting.environmentGiven);
       checkFrameFits(FrameJob::Render, w, h, usableHostMemory());
-      Runtime rt(a->device);
-      const GBuffer g = renderSpheresGBuffer(rt, scene, w, h);
+      DeviceSet devices(a->device);
+      const GBuffer g = renderSpheresGBuffer(devices.runtime(0), scene, w, h);
       if (!a->gbuffer.empty()) writeGBuffer(a->gbuffer, g);
-      Shader shader(rt, scene, model);
+      Shader shader(devices, scene, model);
       finish(shadeWith(shader, g, shadeOptions), [&] {
-        Shader other(rt, scene, against);
+        Shader other(devices, scene, against);
         return shadeWith(other, g, shadeOptions);
       });
     });
@@ -399,7 +407,7 @@ void addRenderCommands(CLI::App& app) {
     cmd->add_option("--size", a->size, "WIDTHxHEIGHT (default 720x720, the camera's aspect at 720 rows)");
     cmd->add_option("--spp", a->spp, "stratified sub-pixel samples per pixel (default 4)");
     cmd->add_option("--exposure", a->exposure, "exposure in stops (default 0)");
-    cmd->add_option("--device", a->device, "device index or name substring");
+    cmd->add_option("--device", a->device, "device index or name substring, or all, or a list such as 0,2 to shade row bands on several devices");
     cmd->callback([a] {
       checkSpp(a->spp);
       checkExposure(a->exposure);
@@ -423,14 +431,14 @@ void addRenderCommands(CLI::App& app) {
       studio.builtinKind = "studio";
       const Scene lighting = gltf::frameLighting(l.asset, l.view, "gltf", studio, true);
       checkFrameFits(FrameJob::Render, l.width, l.height, usableHostMemory());
-      Runtime rt(a->device);
-      writeImages(renderGltf(rt, l, lighting, a->spp, ""), exr, png, a->exposure);
+      DeviceSet devices(a->device);
+      writeImages(renderGltf(devices, l, lighting, a->spp, ""), exr, png, a->exposure);
       auto abs = [](const std::string& p) { return std::filesystem::absolute(p).string(); };
       fmt::print("brdfcl demo: wrote the sphere sweep as a glTF asset and rendered it on {}\n  {}\n  {}\n  {}\n"
                  "Rows: white sheen and coloured sheen over a woven texture (sheen roughness 0.05 to 1), clearcoat over\n"
                  "a flake normal map (roughness 0 to 1), brushed anisotropy strength 0 to 1, anisotropy rotation 0 to pi,\n"
                  "gold metal/dielectric roughness 0 to 1. Studio environment, the file's key and fill lights.\n",
-                 rt.info().name, abs(glb), abs(png), abs(exr));
+                 deviceNames(devices), abs(glb), abs(png), abs(exr));
     });
   }
 }

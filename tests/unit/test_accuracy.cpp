@@ -1,6 +1,8 @@
 // Kernel vs the independent double-precision reference (tests/reference), 100k random samples
 // per mode over 256 random materials, in the domain where no documented clamp applies.
 // Relative tolerance 1e-4 (1e-3 where the baked sheen albedo table enters), absolute floor 1e-6.
+// The suite runs at the device's lane width (BRDFCL_LANES=1 runs all of it at W = 1); a
+// representative subset runs at W = 1 and W = 4 whatever the device.
 #include <gtest/gtest.h>
 
 #include "support.hpp"
@@ -22,11 +24,11 @@ bool usesTable(const EvalOptions& o) {
 // Runs one mode and returns the worst case. With the table, the scaled base is compared relative
 // to the unscaled magnitude of the layers (reference with scaling none): the table's error is an
 // error in the scale factor, so it is relative to what that factor multiplies.
-WorstCase compareMode(const EvalOptions& o, std::uint64_t modeSeed) {
+WorstCase compareMode(const EvalOptions& o, std::uint64_t modeSeed, std::size_t samples = kSamples) {
   std::mt19937_64 rng(seed() ^ modeSeed);
   std::vector<MaterialParams> materials;
   for (std::size_t i = 0; i < kMaterials; ++i) materials.push_back(randomMaterial(rng));
-  const Samples s = randomSamples(rng, kSamples, materials.size());
+  const Samples s = randomSamples(rng, samples, materials.size());
   Evaluator ev(runtime(), o);
   const auto got = ev.evaluate(materials, s);
   const bool table = usesTable(o);
@@ -85,6 +87,72 @@ TEST_P(KernelVsReference, MatchesWithinTolerance) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Modes, KernelVsReference, testing::ValuesIn(allModes()), ModeName());
+
+// The batch kernels at a forced lane width (laneShape reads BRDFCL_LANES on every batch).
+class ForcedLanes {
+ public:
+  explicit ForcedLanes(int w) {
+    if (const char* e = std::getenv("BRDFCL_LANES")) saved_ = e, had_ = true;
+    ::setenv("BRDFCL_LANES", std::to_string(w).c_str(), 1);
+  }
+  ~ForcedLanes() { had_ ? ::setenv("BRDFCL_LANES", saved_.c_str(), 1) : ::unsetenv("BRDFCL_LANES"); }
+
+ private:
+  std::string saved_;
+  bool had_ = false;
+};
+
+struct LanesMode {
+  int lanes;
+  EvalOptions options;
+};
+
+// The full material under both sheen models with and without the table, and the specular and
+// sheen lobes alone: every code path of the layered kernel at each width, in a few seconds.
+std::vector<LanesMode> lanesModes() {
+  std::vector<LanesMode> out;
+  for (int w : {1, 4}) {
+    out.push_back({w, {SheenVisibility::Charlie, SheenDistribution::Charlie, SheenScaling::Min, Lobe::All}});
+    out.push_back({w, {SheenVisibility::Ashikhmin, SheenDistribution::Ashikhmin, SheenScaling::None, Lobe::All}});
+    out.push_back({w, {SheenVisibility::Charlie, SheenDistribution::Charlie, SheenScaling::Min, Lobe::Specular}});
+    out.push_back({w, {SheenVisibility::Charlie, SheenDistribution::Charlie, SheenScaling::Min, Lobe::Sheen}});
+  }
+  return out;
+}
+
+class KernelVsReferenceAtWidth : public testing::TestWithParam<LanesMode> {};
+
+TEST_P(KernelVsReferenceAtWidth, MatchesWithinTolerance) {
+  const auto& [lanes, o] = GetParam();
+  ForcedLanes forced(lanes);
+  ASSERT_EQ(laneShape(runtime().info()).lanes, lanes);
+  constexpr std::size_t kSubset = 20000;
+  const auto w = compareMode(o, std::hash<std::string>{}(describeOptions(o)) ^ std::size_t(lanes), kSubset);
+  EXPECT_EQ(w.checked, 3 * kSubset);
+  EXPECT_LE(w.worstRatio, 1.0) << "W = " << lanes << ", worst: " << w.report;
+}
+
+INSTANTIATE_TEST_SUITE_P(Subset, KernelVsReferenceAtWidth, testing::ValuesIn(lanesModes()),
+                         [](const testing::TestParamInfo<LanesMode>& info) {
+                           return "W" + std::to_string(info.param.lanes) + "_" + ModeName()(testing::TestParamInfo<EvalOptions>(info.param.options, info.index));
+                         });
+
+// Each width computes the same f for a sample: the lanes only batch independent samples, so
+// widths differ at most in the last bits of vectorized vs scalar math builtins.
+TEST(KernelLanes, WidthsAgree) {
+  std::mt19937_64 rng(seed() ^ 0x1a4e5);
+  std::vector<MaterialParams> materials;
+  for (int i = 0; i < 32; ++i) materials.push_back(randomMaterial(rng));
+  const Samples s = randomSamples(rng, 4099, materials.size());  // not a multiple of 16
+  std::vector<std::vector<float>> byWidth;
+  for (int w : {16, 8, 4, 1}) {
+    ForcedLanes forced(w);
+    byWidth.push_back(Evaluator(runtime(), EvalOptions{}).evaluate(materials, s));
+  }
+  for (std::size_t k = 1; k < byWidth.size(); ++k)
+    for (std::size_t i = 0; i < byWidth[0].size(); ++i)
+      ASSERT_NEAR(byWidth[k][i], byWidth[0][i], 1e-5 * std::fabs(byWidth[0][i]) + 1e-7) << "width #" << k << ", value " << i;
+}
 
 // The lobes are a partition of the layered sum.
 TEST(KernelLobes, SumToAll) {

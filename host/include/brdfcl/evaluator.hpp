@@ -105,7 +105,9 @@ class Evaluator {
 // uses it chunk by chunk, and the benchmarks and their C++ peers read the very same arrays.
 class SoaBatch {
  public:
-  static constexpr std::size_t kLanes = 16;  // BRDFCL_W of the batch kernels
+  // Planes are padded to a multiple of 16 samples: a multiple of every lane width a device may
+  // use (laneShape in runtime.hpp: 1, 4, 8 or 16).
+  static constexpr std::size_t kLanes = 16;
 
   // Room for `capacity` samples of `materials` (copied, checked as evaluate() checks them, and
   // packed now). Throws "no materials to evaluate" for an empty list and "out of host memory

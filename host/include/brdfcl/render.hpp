@@ -77,9 +77,15 @@ struct ShadeStats {
 // "brdfcl: exact IBL, N samples per pixel: relative standard error of the image X % (mean over covered pixels)"
 std::string exactIblSummary(const ShadeStats& stats);
 
+class DeviceSet;
+
 class Shader {
  public:
   Shader(Runtime& rt, const Scene& scene, EvalOptions options = {});
+  // Every device of the set shades a band of rows (brdfcl/device_set.hpp: byte-identical to one
+  // device of the same kind); --ibl exact's integrator runs on the set's first device. The set
+  // must outlive the Shader.
+  Shader(DeviceSet& devices, const Scene& scene, EvalOptions options = {});
   ~Shader();
   // Not for concurrent calls on one Shader: it keeps its G-buffer planes between frames.
   // Pixels without V look from the scene's camera when it has one (Scene::hasCamera), else from
@@ -92,6 +98,8 @@ class Shader {
  private:
   struct State;
   std::unique_ptr<State> s_;
+  DeviceSet* devices_ = nullptr;
+  std::vector<std::unique_ptr<Shader>> peers_;  // devices 1.. of devices_
 };
 
 }  // namespace brdfcl

@@ -38,6 +38,11 @@ Image renderFramedAsset(Runtime& rt, const FramedAsset& framed, const Scene& lig
 Image renderFramedAsset(Runtime& rt, const FramedAsset& framed, const gltf::Raycaster& raycaster, const Scene& lighting,
                         int spp, const ShadeOptions& shadeOptions = {}, const EvalOptions& model = {},
                         const std::function<void(int, int)>& progress = {}, ShadeStats* stats = nullptr);
+// The same with the shading split across several devices (brdfcl/device_set.hpp).
+Image renderFramedAsset(DeviceSet& devices, const FramedAsset& framed, const gltf::Raycaster& raycaster,
+                        const Scene& lighting, int spp, const ShadeOptions& shadeOptions = {},
+                        const EvalOptions& model = {}, const std::function<void(int, int)>& progress = {},
+                        ShadeStats* stats = nullptr);
 
 // Everything one render takes; the defaults are `brdfcl render`'s.
 struct RenderJob {

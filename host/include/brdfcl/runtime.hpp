@@ -73,6 +73,22 @@ class Runtime {
   std::map<std::pair<std::string, std::string>, cl::Program> cache_;  // (options, source) -> program
 };
 
+// How the batch kernels (eval.cl) lay work on a device: samples per work-item (BRDFCL_W) and
+// work-items per work-group. CPUs: 16 lanes a work-item, 512 a group (the compiler does not
+// vectorize across work-items through pow/exp, so the lanes are the vectors; bench/README.md).
+// GPUs and everything else: 1 lane, 128 work-items (a GPU's SIMD runs across work-items).
+// $BRDFCL_LANES = 1, 4, 8 or 16 forces the lane width on any device, for tests and tuning;
+// another value throws "BRDFCL_LANES=<v> is not supported; use 1, 4, 8 or 16".
+struct LaneShape {
+  int lanes = 16;
+  std::size_t groupSize = 512;  // before the kernel's own limits (groupSizeFor)
+};
+LaneShape laneShape(const DeviceInfo& device);
+
+// The work-group size to launch `kernel` with: shape.groupSize, at most the kernel's limit on
+// the device, and on GPUs a multiple of the kernel's preferred work-group size multiple.
+std::size_t groupSizeFor(const LaneShape& shape, const cl::Kernel& kernel, const cl::Device& device);
+
 // The full source of an embedded kernel file with its includes expanded (for tests and tools).
 std::string kernelSource(const std::string& kernelFile);
 

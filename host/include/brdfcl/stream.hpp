@@ -35,4 +35,11 @@ struct StreamStats {
 StreamStats evaluateStream(Evaluator& evaluator, const std::vector<MaterialParams>& materials,
                            SampleStream& samples, ResultWriter& out, const StreamOptions& options = {});
 
+class MultiEvaluator;
+
+// The same over several devices (device_set.hpp): each chunk is split across them, and the
+// bytes written equal a single-device run's on devices of one kind.
+StreamStats evaluateStream(MultiEvaluator& evaluator, const std::vector<MaterialParams>& materials,
+                           SampleStream& samples, ResultWriter& out, const StreamOptions& options = {});
+
 }  // namespace brdfcl

@@ -26,24 +26,8 @@ constexpr std::size_t kMaxChunk = std::size_t(1) << 22;
 constexpr std::size_t kPage = 4096, kHugePage = std::size_t(2) << 20;
 // Idle plane sets an Evaluator keeps for its scratch batches (one per concurrent caller, typically).
 constexpr std::size_t kPoolSets = 4;
-// Work-items per work-group for large batches: measured on PoCL's pthread device (bench/README.md,
-// "Work-group size") against its own choice: +20 % on sheen, +30 % on the layered material.
-constexpr std::size_t kLocalSize = 512;
 
 std::size_t roundUp(std::size_t n, std::size_t m) { return (n + m - 1) / m * m; }
-
-// Samples a work-item evaluates (BRDFCL_W): 16 by default; BRDFCL_KERNEL_WIDTH = 1, 4, 8 or 16
-// overrides it for tuning on other devices. Planes stay padded to 16, a multiple of each.
-int kernelWidth() {
-  static const int w = [] {
-    const char* e = std::getenv("BRDFCL_KERNEL_WIDTH");
-    const int v = e ? std::atoi(e) : 16;
-    if (v != 1 && v != 4 && v != 8 && v != 16)
-      throw Error(fmt::format("BRDFCL_KERNEL_WIDTH={} is not supported; use 1, 4, 8 or 16", e));
-    return v;
-  }();
-  return w;
-}
 
 // Samples per launch: bounded by a fixed chunk and by the device's largest allocation.
 std::size_t chunkSize(const Runtime& rt, std::size_t bytesPerSample) {
@@ -206,6 +190,7 @@ const SheenAlbedoTable& Evaluator::sheenAlbedo() {
 // What every launch of a batch shares: the program specialised to its feature set, the packed
 // materials and the sheen albedo table (a 2x2 dummy when no material needs it).
 struct Evaluator::Batch {
+  LaneShape shape;  // the device's lane width and work-group size (runtime.hpp)
   cl::Program program;
   std::vector<brdfcl_material> packed;
   std::vector<float> table = std::vector<float>(4, 0.0f);
@@ -229,8 +214,9 @@ Evaluator::Batch Evaluator::prepare(const std::vector<MaterialParams>& materials
     const auto& dfg = threejsDfgTable();
     b.table.insert(b.table.end(), dfg.begin(), dfg.end());
   }
+  b.shape = laneShape(rt_.info());
   try {
-    b.program = rt_.program("eval.cl", materialDefines(options_, features) + fmt::format(" -DBRDFCL_W={}", kernelWidth()));
+    b.program = rt_.program("eval.cl", materialDefines(options_, features) + fmt::format(" -DBRDFCL_W={}", b.shape.lanes));
     const auto& ctx = rt_.context();
     b.materials = cl::Buffer(ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, b.packed.size() * sizeof(brdfcl_material),
                              b.packed.data());
@@ -265,7 +251,7 @@ SoaBatch::SoaBatch(Evaluator& evaluator, const std::vector<MaterialParams>& mate
   try {
     auto& d = *device_;
     d.kernel = cl::Kernel(d.batch.program, "eval_samples");
-    d.local = std::min(kLocalSize, d.kernel.getWorkGroupInfo<CL_KERNEL_WORK_GROUP_SIZE>(ev_.rt_.device()));
+    d.local = groupSizeFor(d.batch.shape, d.kernel, ev_.rt_.device());
   } catch (const cl::Error&) {
     rethrowOpenCL("creating the batch kernel");
   }
@@ -350,8 +336,9 @@ void SoaBatch::start() {
     }
     // Large launches use the measured work-group size (the padding costs at most 1/8); small ones
     // leave the choice to the runtime rather than evaluate a mostly empty group.
-    std::size_t global = roundUp(count_, kLanes) / std::size_t(kernelWidth());
-    const bool grouped = global >= 8 * d.local && roundUp(global, d.local) * std::size_t(kernelWidth()) <= allocated_;
+    const std::size_t lanes = std::size_t(d.batch.shape.lanes);
+    std::size_t global = roundUp(count_, kLanes) / lanes;
+    const bool grouped = global >= 8 * d.local && roundUp(global, d.local) * lanes <= allocated_;
     if (grouped) global = roundUp(global, d.local);
     q.enqueueNDRangeKernel(d.kernel, cl::NullRange, cl::NDRange(global), grouped ? cl::NDRange(d.local) : cl::NullRange);
     for (int k = 6; k < 9; ++k) {
@@ -469,7 +456,7 @@ std::vector<float> Evaluator::evaluateGrid(const std::vector<MaterialParams>& ma
         kernel.setArg(arg++, b.tableBuffer);
         kernel.setArg(arg++, b.tableSize);
         kernel.setArg(arg++, outs->buffers[0]);
-        q.enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(stride / std::size_t(kernelWidth()), mc));
+        q.enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(stride / std::size_t(b.shape.lanes), mc));
         const std::size_t plane = stride * mc;
         void* r = q.enqueueMapBuffer(outs->buffers[0], CL_TRUE, CL_MAP_READ, 0, 3 * plane * 4);
         const float* out = outs->host[0];

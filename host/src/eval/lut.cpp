@@ -55,6 +55,8 @@ std::vector<float> bakeGgxDfg(Runtime& rt, std::size_t size, int nodesPerPanel) 
   FeatureSet f;
   f.sheen = true;
   try {
+    // 16 lanes on every device, whatever laneShape() says: the lanes sum the phi nodes, so the
+    // width sets the order of the sum and with it the last bits of the table (and its cache key).
     auto program = rt.program("lut.cl", materialDefines(o, f) + " -DBRDFCL_W=16");
     const auto& ctx = rt.context();
     auto ro = CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR;

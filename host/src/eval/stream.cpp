@@ -4,10 +4,12 @@
 
 #include <algorithm>
 #include <functional>
+#include <memory>
 #include <future>
 #include <stdexcept>
 #include <string>
 
+#include "brdfcl/device_set.hpp"
 #include "brdfcl/error.hpp"
 
 namespace brdfcl {
@@ -23,10 +25,14 @@ struct Work {
   const Samples& directions() const { return shared ? *shared : samples; }
 };
 
-}  // namespace
+// How one chunk is evaluated: `batch` for samples, `grid` for the grid's material block.
+struct Evaluate {
+  std::function<void(const Samples&, float*)> batch;
+  std::function<std::vector<float>(const Samples&, std::size_t, std::size_t)> grid;
+};
 
-StreamStats evaluateStream(Evaluator& evaluator, const std::vector<MaterialParams>& materials,
-                           SampleStream& samples, ResultWriter& out, const StreamOptions& options) {
+StreamStats stream(const std::vector<MaterialParams>& materials, SampleStream& samples, ResultWriter& out,
+                   const StreamOptions& options, const std::function<Evaluate()>& prepare) {
   const std::size_t chunk = options.chunk;
   if (chunk < 1 || chunk > StreamOptions::kMaxChunk)
     throw Error("chunk of " + std::to_string(chunk) + " samples is out of range; use 1 to " +
@@ -77,9 +83,7 @@ StreamStats evaluateStream(Evaluator& evaluator, const std::vector<MaterialParam
     }
   }
 
-  std::unique_ptr<SoaBatch> batch;
-  if (!options.grid)
-    batch = std::make_unique<SoaBatch>(evaluator, materials, std::min(chunk, evaluator.launchLimit()), SoaBatch::Scratch{});
+  const Evaluate evaluate = prepare();
 
   // Two slots each: while slot k is evaluated, slot k+1 is read and the results of slot k-1
   // are written. Futures of std::async wait in their destructors, so an exception here never
@@ -99,9 +103,9 @@ StreamStats evaluateStream(Evaluator& evaluator, const std::vector<MaterialParam
     std::vector<float>& result = rgb[k % 2];
     if (!options.grid) {
       result.resize(3 * dirs.size());
-      batch->evaluate(dirs, result.data());
+      evaluate.batch(dirs, result.data());
     } else {
-      result = evaluator.evaluateGrid(materials, dirs, w.m0, w.mc);
+      result = evaluate.grid(dirs, w.m0, w.mc);
     }
     if (!options.grid || w.m0 == 0) stats.samples += dirs.size();
     stats.rows += result.size() / 3;
@@ -112,6 +116,34 @@ StreamStats evaluateStream(Evaluator& evaluator, const std::vector<MaterialParam
   }
   if (writing.valid()) writing.get();
   return stats;
+}
+
+}  // namespace
+
+StreamStats evaluateStream(Evaluator& evaluator, const std::vector<MaterialParams>& materials,
+                           SampleStream& samples, ResultWriter& out, const StreamOptions& options) {
+  std::shared_ptr<SoaBatch> batch;
+  return stream(materials, samples, out, options, [&] {
+    if (!options.grid)
+      batch = std::make_shared<SoaBatch>(evaluator, materials, std::min(options.chunk, evaluator.launchLimit()),
+                                         SoaBatch::Scratch{});
+    return Evaluate{[&](const Samples& dirs, float* rgb) { batch->evaluate(dirs, rgb); },
+                    [&](const Samples& dirs, std::size_t m0, std::size_t mc) {
+                      return evaluator.evaluateGrid(materials, dirs, m0, mc);
+                    }};
+  });
+}
+
+StreamStats evaluateStream(MultiEvaluator& evaluator, const std::vector<MaterialParams>& materials,
+                           SampleStream& samples, ResultWriter& out, const StreamOptions& options) {
+  std::shared_ptr<MultiEvaluator::Batches> batches;
+  return stream(materials, samples, out, options, [&] {
+    if (!options.grid) batches = std::make_shared<MultiEvaluator::Batches>(evaluator, materials, options.chunk);
+    return Evaluate{[&](const Samples& dirs, float* rgb) { batches->evaluate(dirs, rgb); },
+                    [&](const Samples& dirs, std::size_t m0, std::size_t mc) {
+                      return evaluator.evaluateGrid(materials, dirs, m0, mc);
+                    }};
+  });
 }
 
 }  // namespace brdfcl

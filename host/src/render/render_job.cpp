@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include "brdfcl/device_set.hpp"
 #include "brdfcl/error.hpp"
 #include "brdfcl/frame_budget.hpp"
 #include "brdfcl/gltf_frame.hpp"
@@ -43,6 +44,14 @@ Image renderFramedAsset(Runtime& rt, const FramedAsset& framed, const gltf::Rayc
                         int spp, const ShadeOptions& shadeOptions, const EvalOptions& model,
                         const std::function<void(int, int)>& progress, ShadeStats* stats) {
   Shader shader(rt, lighting, model);
+  return gltf::renderFrame(shader, raycaster, framed.view, framed.width, framed.height, spp, progress, shadeOptions,
+                           stats);
+}
+
+Image renderFramedAsset(DeviceSet& devices, const FramedAsset& framed, const gltf::Raycaster& raycaster,
+                        const Scene& lighting, int spp, const ShadeOptions& shadeOptions, const EvalOptions& model,
+                        const std::function<void(int, int)>& progress, ShadeStats* stats) {
+  Shader shader(devices, lighting, model);
   return gltf::renderFrame(shader, raycaster, framed.view, framed.width, framed.height, spp, progress, shadeOptions,
                            stats);
 }

@@ -10,6 +10,7 @@
 
 #include <fmt/format.h>
 
+#include "brdfcl/device_set.hpp"
 #include "brdfcl/error.hpp"
 #include "brdfcl/evaluator.hpp"
 #include "brdfcl/frame_budget.hpp"
@@ -418,6 +419,12 @@ Shader::Shader(Runtime& rt, const Scene& scene, EvalOptions options)
   }
 }
 
+Shader::Shader(DeviceSet& devices, const Scene& scene, EvalOptions options) : Shader(devices.runtime(0), scene, options) {
+  devices_ = &devices;
+  for (std::size_t k = 1; k < devices.size(); ++k)
+    peers_.push_back(std::make_unique<Shader>(devices.runtime(k), scene, options));
+}
+
 namespace {
 // GGX and Charlie prefiltered chains (kPrefilterLevels levels each, roughness k / (levels - 1))
 // and the irradiance map, concatenated in that order: the part of the light worth caching.
@@ -600,54 +607,56 @@ Image Shader::shade(const GBuffer& g, const ShadeOptions& options, ShadeStats* s
   img.height = g.height;
   const std::size_t np = std::size_t(g.width) * g.height;
   std::vector<float> out(3 * np);
-  try {
-    const auto& ctx = s.rt.context();
+  // Rows [rowBegin, rowEnd) on one device's state, in bands, into `out`. Each pixel's value
+  // depends on the pixel alone, so any split of the rows gives the same bytes.
+  auto shadeRows = [&](State& st, int rowBegin, int rowEnd, bool report) {
+    const auto& ctx = st.rt.context();
     // Bands of rows keep every buffer below the device's largest allocation (any image size the
     // host can hold); the device copy of a band is kept between frames of one size.
-    const int band = std::min(bandRows(s.rt.info(), g.width, GB_PLANES * sizeof(float)), g.height);
+    const int band = std::min(bandRows(st.rt.info(), g.width, GB_PLANES * sizeof(float)), rowEnd - rowBegin);
     const std::size_t bandFloats = std::size_t(GB_PLANES) * g.width * band;
-    if (s.planesOnDevice.first != bandFloats) {
-      s.planesOnDevice = {bandFloats, cl::Buffer(ctx, CL_MEM_READ_ONLY, bandFloats * 4)};
+    if (st.planesOnDevice.first != bandFloats) {
+      st.planesOnDevice = {bandFloats, cl::Buffer(ctx, CL_MEM_READ_ONLY, bandFloats * 4)};
     }
-    cl::Buffer& bg = s.planesOnDevice.second;
+    cl::Buffer& bg = st.planesOnDevice.second;
     cl::Buffer bo(ctx, CL_MEM_WRITE_ONLY, 3 * std::size_t(g.width) * band * 4);
-    cl::Kernel k(s.program, "shade");
+    cl::Kernel k(st.program, "shade");
     // Held until the launch is done: a kernel argument does not keep its buffer alive.
-    const cl::Buffer aniso = anisotropicDfgFor(s.rt, g);
+    const cl::Buffer aniso = anisotropicDfgFor(st.rt, g);
     int a = 0;
     k.setArg(a++, bg);
     k.setArg(a++, g.width);
     k.setArg(a++, g.height);
     const int bandArg = a;  // y0, then the band's rows: set per band below
     a += 2;
-    k.setArg(a++, s.scene.hasCamera || !g.camera ? cameraFor(s.scene, g.width, g.height)
-                                                  : cameraFor(*g.camera, g.width, g.height));
-    k.setArg(a++, s.lights);
-    k.setArg(a++, s.lightCount);
-    k.setArg(a++, s.light->background);
-    k.setArg(a++, s.light->ggx);
-    k.setArg(a++, s.light->charlie);
-    k.setArg(a++, s.light->irradiance);
-    k.setArg(a++, s.light->envW);
-    k.setArg(a++, s.light->envH);
-    k.setArg(a++, charlieW(s.light->envW));
-    k.setArg(a++, charlieH(s.light->envH));
+    k.setArg(a++, st.scene.hasCamera || !g.camera ? cameraFor(st.scene, g.width, g.height)
+                                                   : cameraFor(*g.camera, g.width, g.height));
+    k.setArg(a++, st.lights);
+    k.setArg(a++, st.lightCount);
+    k.setArg(a++, st.light->background);
+    k.setArg(a++, st.light->ggx);
+    k.setArg(a++, st.light->charlie);
+    k.setArg(a++, st.light->irradiance);
+    k.setArg(a++, st.light->envW);
+    k.setArg(a++, st.light->envH);
+    k.setArg(a++, charlieW(st.light->envW));
+    k.setArg(a++, charlieH(st.light->envH));
     k.setArg(a++, kPrefilterLevels);
     k.setArg(a++, kIrradianceW);
     k.setArg(a++, kIrradianceH);
-    k.setArg(a++, s.scene.environment.rotation);
-    k.setArg(a++, s.light->dfg);
+    k.setArg(a++, st.scene.environment.rotation);
+    k.setArg(a++, st.light->dfg);
     k.setArg(a++, kDfgSize);
     k.setArg(a++, aniso);
-    k.setArg(a++, s.light->sheenE);
-    k.setArg(a++, s.light->sheenESize);
-    k.setArg(a++, s.light->fresnelLambert);
+    k.setArg(a++, st.light->sheenE);
+    k.setArg(a++, st.light->sheenESize);
+    k.setArg(a++, st.light->fresnelLambert);
     k.setArg(a++, kFresnelLambertSize);
     k.setArg(a++, exact ? 0 : 1);
     k.setArg(a++, bo);
-    auto& q = s.rt.queue();
-    for (int y0 = 0; y0 < g.height; y0 += band) {
-      const int rows = std::min(band, g.height - y0);
+    auto& q = st.rt.queue();
+    for (int y0 = rowBegin; y0 < rowEnd; y0 += band) {
+      const int rows = std::min(band, rowEnd - y0);
       const std::size_t bandPixels = std::size_t(g.width) * rows, first = std::size_t(y0) * g.width;
       for (int plane = 0; plane < GB_PLANES; ++plane)
         q.enqueueWriteBuffer(bg, CL_FALSE, plane * bandPixels * 4, bandPixels * 4, planes.data() + plane * np + first);
@@ -657,7 +666,23 @@ Image Shader::shade(const GBuffer& g, const ShadeOptions& options, ShadeStats* s
       for (int c = 0; c < 3; ++c)
         q.enqueueReadBuffer(bo, CL_FALSE, c * bandPixels * 4, bandPixels * 4, out.data() + c * np + first);
       q.finish();
-      if (!exact && options.progress) options.progress(y0 / band + 1, (g.height + band - 1) / band);
+      if (report && !exact && options.progress)
+        options.progress((y0 - rowBegin) / band + 1, (rowEnd - rowBegin + band - 1) / band);
+    }
+  };
+  try {
+    const auto& ctx = s.rt.context();
+    if (peers_.empty()) {
+      shadeRows(s, 0, g.height, true);
+    } else {
+      // Row bands across the devices (DeviceSet); progress counts devices done.
+      std::mutex progressMutex;
+      int done = 0;
+      devices_->run(std::size_t(g.height), 1, [&](std::size_t dev, std::size_t first, std::size_t count) {
+        shadeRows(dev == 0 ? s : *peers_[dev - 1]->s_, int(first), int(first + count), false);
+        std::lock_guard<std::mutex> lock(progressMutex);
+        if (!exact && options.progress) options.progress(++done, int(devices_->size()));
+      });
     }
     if (exact && !s.exactReady) {
       // The CDFs come from the full-resolution map the kernel reads, as it is on the device.
