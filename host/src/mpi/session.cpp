@@ -137,6 +137,25 @@ void Session::barrier() const {
   if (active_) MPI_Barrier(MPI_COMM_WORLD);
 }
 
+void Session::gatherShares(std::vector<float>& data, const std::vector<Share>& shares, std::size_t stride) const {
+  if (!active_) return;
+  const Share& mine = shares[static_cast<std::size_t>(rank_)];
+  const int count = static_cast<int>(mine.count() * stride);
+  float* base = data.empty() ? nullptr : data.data();
+  if (rank_ != 0) {
+    MPI_Gatherv(count ? base + mine.begin * stride : nullptr, count, MPI_FLOAT, nullptr, nullptr, nullptr, MPI_FLOAT, 0,
+                MPI_COMM_WORLD);
+    return;
+  }
+  // Counts and displacements are ints: a 16384^2 RGB frame is 805M floats, below 2^31.
+  std::vector<int> counts(static_cast<std::size_t>(size_)), displacements(counts.size());
+  for (std::size_t r = 0; r < counts.size(); ++r) {
+    counts[r] = static_cast<int>(shares[r].count() * stride);
+    displacements[r] = static_cast<int>(shares[r].begin * stride);
+  }
+  MPI_Gatherv(MPI_IN_PLACE, 0, MPI_FLOAT, base, counts.data(), displacements.data(), MPI_FLOAT, 0, MPI_COMM_WORLD);
+}
+
 #else  // one process: every collective is the identity
 
 void Session::start(int*, char***) {}
@@ -149,6 +168,7 @@ std::uint64_t Session::exclusivePrefixSum(std::uint64_t value, std::uint64_t* to
 std::string Session::broadcast(const std::string& fromRank0) const { return fromRank0; }
 int Session::broadcastExitCode(int code) const { return code; }
 void Session::barrier() const {}
+void Session::gatherShares(std::vector<float>&, const std::vector<Share>&, std::size_t) const {}
 
 #endif
 

@@ -6,8 +6,11 @@
 #include <cstdint>
 #include <functional>
 #include <string>
+#include <vector>
 
 namespace brdfcl::mpi {
+
+struct Share;
 
 // Whether the environment says mpirun (Open MPI, MPICH/Hydra, PMIx) started this process.
 bool launchedByMpirun();
@@ -41,6 +44,10 @@ class Session {
   // Rank 0's exit code on every rank (for the commands that run on rank 0 alone).
   int broadcastExitCode(int code) const;
   void barrier() const;
+  // Rank 0 receives into `data` the range [share(r).begin, share(r).end) * stride floats of every
+  // other rank r, sent from the same place of that rank's `data`: the rows each rank rendered.
+  // `shares` is indexed by rank (rank 0 needs them all).
+  void gatherShares(std::vector<float>& data, const std::vector<Share>& shares, std::size_t stride) const;
 
  private:
   Session() = default;

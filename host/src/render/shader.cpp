@@ -646,8 +646,10 @@ Image Shader::shade(const GBuffer& g, const ShadeOptions& options, ShadeStats* s
     k.setArg(a++, exact ? 0 : 1);
     k.setArg(a++, bo);
     auto& q = s.rt.queue();
-    for (int y0 = 0; y0 < g.height; y0 += band) {
-      const int rows = std::min(band, g.height - y0);
+    const int yBegin = exact ? 0 : std::clamp(options.firstRow, 0, g.height);
+    const int yEnd = exact || options.rowCount < 0 ? g.height : std::min(g.height, yBegin + options.rowCount);
+    for (int y0 = yBegin; y0 < yEnd; y0 += band) {
+      const int rows = std::min(band, yEnd - y0);
       const std::size_t bandPixels = std::size_t(g.width) * rows, first = std::size_t(y0) * g.width;
       for (int plane = 0; plane < GB_PLANES; ++plane)
         q.enqueueWriteBuffer(bg, CL_FALSE, plane * bandPixels * 4, bandPixels * 4, planes.data() + plane * np + first);
@@ -657,7 +659,7 @@ Image Shader::shade(const GBuffer& g, const ShadeOptions& options, ShadeStats* s
       for (int c = 0; c < 3; ++c)
         q.enqueueReadBuffer(bo, CL_FALSE, c * bandPixels * 4, bandPixels * 4, out.data() + c * np + first);
       q.finish();
-      if (!exact && options.progress) options.progress(y0 / band + 1, (g.height + band - 1) / band);
+      if (!exact && options.progress) options.progress((y0 - yBegin) / band + 1, (yEnd - yBegin + band - 1) / band);
     }
     if (exact && !s.exactReady) {
       // The CDFs come from the full-resolution map the kernel reads, as it is on the device.
