@@ -205,4 +205,13 @@ TEST_F(Mpi, UnreadableInput) {
   expectOneLineFailure({"shade", "--gbuffer", "missing.exr", "--scene", "m.json", "--out", "o.exr"}, "o.exr");
 }
 
+TEST_F(Mpi, EvalToStdoutIsRefused) {
+  const RunResult r = many({"eval", "--materials", "m.json", "--samples", "s.csv", "--out", "-"});
+  EXPECT_EQ(r.status, 2) << r.describe();
+  EXPECT_EQ(r.out, "");
+  EXPECT_EQ(r.err,
+            "brdfcl: --out '-': under mpirun, outputs must be files (the ranks write their parts into one file); run "
+            "one process to write to stdout or a FIFO\n");
+}
+
 }  // namespace
