@@ -47,6 +47,8 @@ void evalAcrossRanks(const EvalArgs& args, const EvalOptions& o) {
   const std::string format = detail::outputExtension(args.out, detail::resolveOutput(args.out));
   session.together([&] {
     mpi::checkSharedOutput("--out", args.out);
+    if (args.samples == "-")  // mpirun gives stdin to rank 0 only
+      throw Error("--samples -: under mpirun only rank 0 can read stdin; give the samples as a file every rank can read");
     materials = readUserMaterials(args.materials, args.strict);
     samples = std::make_unique<SampleStream>(args.samples, args.grid ? 0 : materials.size(), args.grid);
   });

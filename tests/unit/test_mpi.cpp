@@ -205,6 +205,15 @@ TEST_F(Mpi, UnreadableInput) {
   expectOneLineFailure({"shade", "--gbuffer", "missing.exr", "--scene", "m.json", "--out", "o.exr"}, "o.exr");
 }
 
+TEST_F(Mpi, EvalFromStdinIsRefused) {
+  const RunResult r = many({"eval", "--materials", "m.json", "--samples", "-", "--out", "o.csv"});
+  EXPECT_EQ(r.status, 2) << r.describe();
+  EXPECT_EQ(r.err,
+            "brdfcl: --samples -: under mpirun only rank 0 can read stdin; give the samples as a file every rank can "
+            "read\n");
+  EXPECT_FALSE(fs::exists(dir_.path("o.csv")));
+}
+
 TEST_F(Mpi, EvalToStdoutIsRefused) {
   const RunResult r = many({"eval", "--materials", "m.json", "--samples", "s.csv", "--out", "-"});
   EXPECT_EQ(r.status, 2) << r.describe();
