@@ -15,6 +15,9 @@
 #include <string>
 #include <vector>
 
+#include "brdfcl/error.hpp"
+#include "brdfcl/io.hpp"
+#include "host/src/mpi/session.hpp"
 #include "process.hpp"
 
 namespace fs = std::filesystem;
@@ -82,6 +85,83 @@ std::string npyOf(const std::vector<std::vector<float>>& rows) {
   out += header;
   for (const auto& r : rows) out.append(reinterpret_cast<const char*>(r.data()), r.size() * sizeof(float));
   return out;
+}
+
+// All rows of a stream read in chunks of `chunk`, concatenated.
+brdfcl::Samples readAll(brdfcl::SampleStream& stream, std::size_t chunk) {
+  brdfcl::Samples all, part;
+  while (stream.next(chunk, part)) {
+    all.material.insert(all.material.end(), part.material.begin(), part.material.end());
+    all.L.insert(all.L.end(), part.L.begin(), part.L.end());
+    all.V.insert(all.V.end(), part.V.begin(), part.V.end());
+  }
+  return all;
+}
+
+// The pieces the ranks rely on, in one process (these run without mpirun too).
+TEST(RowShares, CoverEveryRowOnceInRankOrder) {
+  for (std::uint64_t total : {0, 1, 2, 3, 10, 1000, 1001}) {
+    for (int size : {1, 2, 3, 7}) {
+      std::uint64_t next = 0;
+      for (int r = 0; r < size; ++r) {
+        const auto share = brdfcl::mpi::shareOf(total, r, size);
+        EXPECT_EQ(share.begin, next);
+        EXPECT_LE(share.count(), total / size + 1);
+        EXPECT_GE(share.count(), total / size);
+        next = share.end;
+      }
+      EXPECT_EQ(next, total);
+    }
+  }
+  EXPECT_FALSE(brdfcl::mpi::Session::get().active()) << "MPI must not start outside mpirun";
+}
+
+TEST(RowShares, SelectedRowsAreTheWholeFilesRows) {
+  ScratchDir dir("rowshares");
+  const auto rows = sampleRows();
+  // CRLF, blank lines at the end, no final newline: the CSV readers' edge cases.
+  std::string csv = csvOf(rows);
+  writeText(dir.path("s.csv"), csv);
+  std::string crlf;
+  for (char c : csv) crlf += c == '\n' ? std::string("\r\n") : std::string(1, c);
+  writeText(dir.path("crlf.csv"), crlf + " \r\n\n\t\n");
+  writeText(dir.path("open.csv"), csv.substr(0, csv.size() - 1));
+  writeText(dir.path("s.npy"), npyOf(rows));
+  for (const char* name : {"s.csv", "crlf.csv", "open.csv", "s.npy"}) {
+    brdfcl::SampleStream whole(dir.path(name), 4, false);
+    EXPECT_EQ(whole.countRows(), rows.size()) << name;
+    const brdfcl::Samples expected = readAll(whole, 1u << 20);
+    for (int size : {1, 3, 7}) {
+      brdfcl::Samples joined;
+      for (int r = 0; r < size; ++r) {
+        const auto share = brdfcl::mpi::shareOf(rows.size(), r, size);
+        brdfcl::SampleStream part(dir.path(name), 4, false);
+        part.selectRows(share.begin, share.count());
+        const brdfcl::Samples got = readAll(part, 37);
+        EXPECT_EQ(got.size(), share.count()) << name;
+        joined.material.insert(joined.material.end(), got.material.begin(), got.material.end());
+        joined.L.insert(joined.L.end(), got.L.begin(), got.L.end());
+        joined.V.insert(joined.V.end(), got.V.begin(), got.V.end());
+      }
+      EXPECT_EQ(joined.material, expected.material) << name << " in " << size;
+      EXPECT_EQ(joined.L, expected.L) << name << " in " << size;
+      EXPECT_EQ(joined.V, expected.V) << name << " in " << size;
+    }
+  }
+  // A blank line that ends a range is the error it is in the whole file, with the file's line.
+  std::string blank = csv;
+  std::size_t at = 0;
+  for (int line = 1; line < 10; ++line) at = blank.find('\n', at) + 1;
+  blank.replace(at, blank.find('\n', at) - at, "");  // line 10, row 8
+  writeText(dir.path("blank.csv"), blank);
+  brdfcl::SampleStream part(dir.path("blank.csv"), 4, false);
+  part.selectRows(0, 9);
+  try {
+    readAll(part, 4);
+    FAIL() << "no error";
+  } catch (const brdfcl::Error& e) {
+    EXPECT_EQ(std::string(e.what()).rfind(dir.path("blank.csv") + ":10: empty line", 0), 0u) << e.what();
+  }
 }
 
 class Mpi : public ::testing::Test {
