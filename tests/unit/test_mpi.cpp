@@ -255,6 +255,13 @@ TEST_F(Mpi, RenderAndShadeMatchOneProcess) {
   expectSameBytes({"shade", "--gbuffer", "g.exr", "--scene", "scene.json"}, "--out", ".exr");
 }
 
+TEST_F(Mpi, GltfRenderMatchesOneProcess) {
+  // The demo's sphere sweep as a .glb: textures in every extension slot, lights, a camera.
+  const RunResult demo = one({"demo", "--size", "24x24", "--spp", "1"});
+  ASSERT_EQ(demo.status, 0) << demo.describe();
+  expectSameBytes({"render", "--gltf", "out/demo.glb", "--size", "40x30", "--spp", "2"}, "--out", ".exr");
+}
+
 TEST_F(Mpi, BadRowInTheLastRanksRange) {
   auto rows = rows_;
   rows[950][1] = rows[950][2] = rows[950][3] = 0.0f;  // L of zero length
