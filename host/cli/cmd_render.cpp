@@ -1,6 +1,7 @@
 // `brdfcl gbuffer`, `brdfcl shade`, `brdfcl render` and `brdfcl demo`: G-buffers of the built-in
 // spheres or of a glTF asset, deferred shading of any G-buffer under a scene's lights and
-// environment, and both chained into linear EXR radiance and a tone-mapped PNG.
+// environment, and both chained into linear EXR radiance and a tone-mapped PNG. Under mpirun,
+// shade and render shade a band of rows per rank and rank 0 gathers them and writes the files.
 #include <unistd.h>
 
 #include <chrono>
@@ -26,6 +27,7 @@
 #include "brdfcl/render_job.hpp"
 #include "commands.hpp"
 #include "host/src/io/output.hpp"
+#include "host/src/mpi/session.hpp"
 
 namespace brdfcl::cli {
 
@@ -198,6 +200,39 @@ struct ProfileArgs {
   }
 };
 
+// The rows of a frame `height` rows tall that each rank shades under mpirun, indexed by rank:
+// contiguous bands in rank order, or every row on rank 0 for the exact image-based light, which
+// integrates the whole frame at once.
+std::vector<mpi::Share> rowShares(int height, IblMode ibl) {
+  const mpi::Session& s = mpi::Session::get();
+  std::vector<mpi::Share> shares(static_cast<std::size_t>(s.size()));
+  for (int r = 0; r < s.size(); ++r)
+    shares[std::size_t(r)] = ibl == IblMode::Exact ? (r == 0 ? mpi::Share{0, std::uint64_t(height)} : mpi::Share{})
+                                                   : mpi::shareOf(std::uint64_t(height), r, s.size());
+  return shares;
+}
+
+// This rank's share of the shading.
+ShadeOptions forRank(ShadeOptions o, const std::vector<mpi::Share>& shares) {
+  const mpi::Session& s = mpi::Session::get();
+  if (s.parallel() && o.ibl != IblMode::Exact) {
+    o.firstRow = int(shares[std::size_t(s.rank())].begin);
+    o.rowCount = int(shares[std::size_t(s.rank())].count());
+  }
+  return o;
+}
+
+bool myShareIsEmpty(const std::vector<mpi::Share>& shares) {
+  return shares[std::size_t(mpi::Session::get().rank())].count() == 0;
+}
+
+// Rank 0 collects every rank's rows of `img` (a no-op in one process).
+void gatherRows(Image& img, const std::vector<mpi::Share>& shares) {
+  mpi::Session::get().gatherShares(img.rgb, shares, 3 * std::size_t(img.width));
+}
+
+bool writesOutputs() { return mpi::Session::get().rank() == 0; }
+
 // "pthread-... CPU", or the devices of a list joined by " + ".
 std::string deviceNames(DeviceSet& devices) {
   std::string names;
@@ -228,7 +263,7 @@ void addRenderCommands(CLI::App& app) {
     a->gltf.add(cmd);
     cmd->add_option("--size", a->gltf.size, "WIDTHxHEIGHT (default 768x768 for spheres; 1280x720 or the camera's aspect at 720 rows)");
     cmd->add_option("--out", a->out, "output G-buffer .exr")->required();
-    cmd->add_option("--device", a->device, "device index or name substring");
+    cmd->add_option("--device", a->device, "device index or name substring, or all, or a list such as 0,2 to shade row bands on several devices");
     cmd->callback([a, cmd] {
       checkOutput("--out", a->out, ".exr");
       if (!a->gltf.path.empty()) {
@@ -244,8 +279,8 @@ void addRenderCommands(CLI::App& app) {
       if (!a->gltf.size.empty()) parseSize(a->gltf.size, w, h);
       const Scene scene = builtinScene(a->scene);
       checkFrameFits(FrameJob::GBuffer, w, h, usableHostMemory());
-      Runtime rt(a->device);
-      writeGBuffer(a->out, renderSpheresGBuffer(rt, scene, w, h));
+      DeviceSet devices(a->device);
+      writeGBuffer(a->out, renderSpheresGBuffer(devices.runtime(0), scene, w, h));
     });
   }
   {
@@ -269,36 +304,47 @@ void addRenderCommands(CLI::App& app) {
     a->ibl.add(cmd);
     a->profile.add(cmd, false);
     cmd->callback([a, cmd] {
+      mpi::Session& session = mpi::Session::get();
       std::string exr = a->exr, png = a->png;
-      if (lowerExtension(a->out) == ".png" && !detail::isStreamTarget(a->out)) {
-        if (!png.empty()) throw Error("--out is already the PNG; drop --png, or give --out FILE.exr");
-        png = a->out;
-      } else {
-        if (lowerExtension(a->out) != ".exr" && !detail::isStreamTarget(a->out))
-          throw Error(fmt::format("--out '{}' must end in .exr or .png", a->out));
-        if (!exr.empty()) throw Error("--out is already the EXR; drop --exr, or give --out FILE.png");
-        exr = a->out;
-      }
-      checkOneStdout({{"--out", &a->out}, {"--png", &a->png}, {"--exr", &a->exr}});
-      checkOutput("--out", a->out, png == a->out ? ".png" : ".exr");
-      checkOutput("--png", a->png, ".png");
-      checkOutput("--exr", a->exr, ".exr");
-      checkExposure(a->exposure);
-      const ShadeOptions shadeOptions = a->ibl.check(cmd, "brdfcl shade");
-      const EvalOptions model = a->profile.options();
-      if (shadeOptions.ibl == IblMode::Exact && model.profile != Profile::Spec)
-        throw Error("--ibl exact integrates the spec's BRDF only; --profile " + a->profile.profile +
-                    " reproduces its engine's own image-based light, so use --ibl split-sum with it");
-      GBufferReadOptions readOptions;
-      readOptions.check = !a->noCheck;
-      const GBuffer g = readGBuffer(a->gbuffer, readOptions);
-      const Scene scene = readScene(a->scene);
-      if (const std::string w = shadeCameraWarning(a->scene, scene, a->gbuffer, g); !w.empty())
-        printWarning(w);
-      checkFrameFits(FrameJob::Shade, g.width, g.height, usableHostMemory(), a->gbuffer);
-      DeviceSet devices(a->device);
-      Shader shader(devices, scene, model);
-      writeImages(shadeWith(shader, g, shadeOptions), exr, png, a->exposure);
+      Image img;
+      std::vector<mpi::Share> shares;
+      session.together([&] {
+        if (lowerExtension(a->out) == ".png" && !detail::isStreamTarget(a->out)) {
+          if (!png.empty()) throw Error("--out is already the PNG; drop --png, or give --out FILE.exr");
+          png = a->out;
+        } else {
+          if (lowerExtension(a->out) != ".exr" && !detail::isStreamTarget(a->out))
+            throw Error(fmt::format("--out '{}' must end in .exr or .png", a->out));
+          if (!exr.empty()) throw Error("--out is already the EXR; drop --exr, or give --out FILE.png");
+          exr = a->out;
+        }
+        checkOneStdout({{"--out", &a->out}, {"--png", &a->png}, {"--exr", &a->exr}});
+        checkOutput("--out", a->out, png == a->out ? ".png" : ".exr");
+        checkOutput("--png", a->png, ".png");
+        checkOutput("--exr", a->exr, ".exr");
+        checkExposure(a->exposure);
+        const ShadeOptions shadeOptions = a->ibl.check(cmd, "brdfcl shade");
+        const EvalOptions model = a->profile.options();
+        if (shadeOptions.ibl == IblMode::Exact && model.profile != Profile::Spec)
+          throw Error("--ibl exact integrates the spec's BRDF only; --profile " + a->profile.profile +
+                      " reproduces its engine's own image-based light, so use --ibl split-sum with it");
+        GBufferReadOptions readOptions;
+        readOptions.check = !a->noCheck;
+        const GBuffer g = readGBuffer(a->gbuffer, readOptions);
+        const Scene scene = readScene(a->scene);
+        if (const std::string w = shadeCameraWarning(a->scene, scene, a->gbuffer, g); !w.empty())
+          printWarning(w);
+        checkFrameFits(FrameJob::Shade, g.width, g.height, usableHostMemory(), a->gbuffer);
+        shares = rowShares(g.height, shadeOptions.ibl);
+        if (myShareIsEmpty(shares)) return;
+        DeviceSet devices(mpi::deviceSelector(a->device));
+        Shader shader(devices, scene, model);
+        img = shadeWith(shader, g, forRank(shadeOptions, shares));
+      });
+      gatherRows(img, shares);
+      session.together([&] {
+        if (writesOutputs()) writeImages(img, exr, png, a->exposure);
+      });
     });
   }
   {
@@ -326,73 +372,89 @@ void addRenderCommands(CLI::App& app) {
     cmd->add_option("--gbuffer", a->gbuffer, "also the pixel-centre G-buffer as .exr");
     cmd->add_option("--device", a->device, "device index or name substring, or all, or a list such as 0,2 to shade row bands on several devices");
     cmd->callback([a, cmd] {
+      mpi::Session& session = mpi::Session::get();
       const EvalOptions model = a->profile.options();
       const bool diff = cmd->count("--diff-against") > 0;
       const EvalOptions against = diff ? a->profile.againstOptions() : EvalOptions{};
-      if (diff && lowerExtension(a->out) != ".png" && !detail::isStreamTarget(a->out))
-        throw Error(fmt::format("--out '{}': with --diff-against it is the difference picture, a .png; keep the render "
-                                "with --exr FILE.exr",
-                                a->out));
       std::string png = a->out, exr = a->exr;
-      if (diff) {
-        // The picture is --out; --exr keeps the --profile render.
-      } else if (lowerExtension(a->out) == ".exr" && !detail::isStreamTarget(a->out)) {
-        if (!exr.empty()) throw Error("--out is already the EXR; drop --exr, or give --out FILE.png");
-        exr = a->out;
-        png.clear();
-      } else if (lowerExtension(a->out) != ".png" && !detail::isStreamTarget(a->out)) {
-        throw Error(fmt::format("--out '{}' must end in .png or .exr", a->out));
-      }
-      checkOneStdout({{"--out", &a->out}, {"--exr", &a->exr}, {"--gbuffer", &a->gbuffer}});
-      checkOutput("--out", a->out, png.empty() ? ".exr" : ".png");
-      checkOutput("--exr", a->exr, ".exr");
-      checkOutput("--gbuffer", a->gbuffer, ".exr");
-      checkExposure(a->exposure);
-      checkSpp(a->spp);
-      const ShadeOptions shadeOptions = a->ibl.check(cmd, "brdfcl render");
-      if (shadeOptions.ibl == IblMode::Exact && (model.profile != Profile::Spec || against.profile != Profile::Spec))
-        throw Error("--ibl exact integrates the spec's BRDF only; an engine profile reproduces its engine's own "
-                    "image-based light, so use --ibl split-sum with --profile and --diff-against");
-      const Environment environment = a->lighting.environmentChoice(cmd);
-      // Under --diff-against: render both, write the --profile render to --exr, picture the difference.
-      auto finish = [&](const Image& img, const std::function<Image()>& renderAgainst) {
+      Image img, other;  // other: the --diff-against render
+      std::vector<mpi::Share> shares;
+      session.together([&] {
+        if (diff && lowerExtension(a->out) != ".png" && !detail::isStreamTarget(a->out))
+          throw Error(fmt::format("--out '{}': with --diff-against it is the difference picture, a .png; keep the render "
+                                  "with --exr FILE.exr",
+                                  a->out));
+        if (diff) {
+          // The picture is --out; --exr keeps the --profile render.
+        } else if (lowerExtension(a->out) == ".exr" && !detail::isStreamTarget(a->out)) {
+          if (!exr.empty()) throw Error("--out is already the EXR; drop --exr, or give --out FILE.png");
+          exr = a->out;
+          png.clear();
+        } else if (lowerExtension(a->out) != ".png" && !detail::isStreamTarget(a->out)) {
+          throw Error(fmt::format("--out '{}' must end in .png or .exr", a->out));
+        }
+        checkOneStdout({{"--out", &a->out}, {"--exr", &a->exr}, {"--gbuffer", &a->gbuffer}});
+        checkOutput("--out", a->out, png.empty() ? ".exr" : ".png");
+        checkOutput("--exr", a->exr, ".exr");
+        checkOutput("--gbuffer", a->gbuffer, ".exr");
+        checkExposure(a->exposure);
+        checkSpp(a->spp);
+        const ShadeOptions shadeOptions = a->ibl.check(cmd, "brdfcl render");
+        if (shadeOptions.ibl == IblMode::Exact && (model.profile != Profile::Spec || against.profile != Profile::Spec))
+          throw Error("--ibl exact integrates the spec's BRDF only; an engine profile reproduces its engine's own "
+                      "image-based light, so use --ibl split-sum with --profile and --diff-against");
+        const Environment environment = a->lighting.environmentChoice(cmd);
+        // Rank 0 alone writes the G-buffer (every rank ray-casts the whole frame).
+        const std::string gbufferOut = writesOutputs() ? a->gbuffer : "";
+        if (!a->gltf.path.empty()) {
+          if (cmd->count("--scene")) throw Error("--scene and --gltf are alternatives; give one");
+          const LoadedAsset l = loadAsset(a->gltf);
+          const Scene lighting =
+              gltf::frameLighting(l.asset, l.view, a->lighting.lights, environment, a->lighting.environmentGiven);
+          checkFrameFits(FrameJob::Render, l.width, l.height, usableHostMemory());
+          shares = rowShares(l.height, shadeOptions.ibl);
+          if (myShareIsEmpty(shares)) return;
+          const ShadeOptions mine = forRank(shadeOptions, shares);
+          DeviceSet devices(mpi::deviceSelector(a->device));
+          img = renderGltf(devices, l, lighting, a->spp, gbufferOut, mine, model);
+          if (diff) other = renderGltf(devices, l, lighting, a->spp, "", mine, against);
+          return;
+        }
+        a->gltf.checkBuiltin(cmd);
+        if (cmd->count("--spp")) throw Error("--spp applies to glTF assets (the spheres are shaded at pixel centres); add --gltf FILE");
+        int w = 768, h = 768;
+        if (!a->gltf.size.empty()) parseSize(a->gltf.size, w, h);
+        Scene scene = builtinScene(a->scene);
+        if (a->lighting.environmentGiven) scene.environment = environment;
+        gltf::applyLightsOption(scene, a->lighting.lights, a->lighting.environmentGiven);
+        checkFrameFits(FrameJob::Render, w, h, usableHostMemory());
+        shares = rowShares(h, shadeOptions.ibl);
+        if (myShareIsEmpty(shares)) return;
+        const ShadeOptions mine = forRank(shadeOptions, shares);
+        DeviceSet devices(mpi::deviceSelector(a->device));
+        const GBuffer g = renderSpheresGBuffer(devices.runtime(0), scene, w, h);
+        if (!gbufferOut.empty()) writeGBuffer(gbufferOut, g);
+        Shader shader(devices, scene, model);
+        img = shadeWith(shader, g, mine);
+        if (diff) {
+          Shader againstShader(devices, scene, against);
+          other = shadeWith(againstShader, g, mine);
+        }
+      });
+      gatherRows(img, shares);
+      if (diff) gatherRows(other, shares);
+      // Under --diff-against: the --profile render to --exr, and the picture of the difference.
+      session.together([&] {
+        if (!writesOutputs()) return;
         if (!diff) {
           writeImages(img, exr, png, a->exposure);
           return;
         }
-        const Image other = renderAgainst();
         if (!exr.empty()) writeImages(img, exr, "", a->exposure);
         const std::string nameA = "--profile " + a->profile.profile, nameB = "--profile " + a->profile.against;
         const ImageDiff d = diffImages(img.rgb, other.rgb, img.width, img.height);
         writeImageDiffPng(a->out, d, nameA, nameB, defaultDiffRange(d.stats));
         std::fputs(formatImageDiff(d.stats, nameA, nameB).c_str(), detail::isStreamTarget(a->out) ? stderr : stdout);
-      };
-      if (!a->gltf.path.empty()) {
-        if (cmd->count("--scene")) throw Error("--scene and --gltf are alternatives; give one");
-        const LoadedAsset l = loadAsset(a->gltf);
-        const Scene lighting =
-            gltf::frameLighting(l.asset, l.view, a->lighting.lights, environment, a->lighting.environmentGiven);
-        checkFrameFits(FrameJob::Render, l.width, l.height, usableHostMemory());
-        DeviceSet devices(a->device);
-        finish(renderGltf(devices, l, lighting, a->spp, a->gbuffer, shadeOptions, model),
-               [&] { return renderGltf(devices, l, lighting, a->spp, "", shadeOptions, against); });
-        return;
-      }
-      a->gltf.checkBuiltin(cmd);
-      if (cmd->count("--spp")) throw Error("--spp applies to glTF assets (the spheres are shaded at pixel centres); add --gltf FILE");
-      int w = 768, h = 768;
-      if (!a->gltf.size.empty()) parseSize(a->gltf.size, w, h);
-      Scene scene = builtinScene(a->scene);
-      if (a->lighting.environmentGiven) scene.environment = environment;
-      gltf::applyLightsOption(scene, a->lighting.lights, a->lighting.environmentGiven);
-      checkFrameFits(FrameJob::Render, w, h, usableHostMemory());
-      DeviceSet devices(a->device);
-      const GBuffer g = renderSpheresGBuffer(devices.runtime(0), scene, w, h);
-      if (!a->gbuffer.empty()) writeGBuffer(a->gbuffer, g);
-      Shader shader(devices, scene, model);
-      finish(shadeWith(shader, g, shadeOptions), [&] {
-        Shader other(devices, scene, against);
-        return shadeWith(other, g, shadeOptions);
       });
     });
   }

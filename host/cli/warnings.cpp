@@ -3,10 +3,14 @@
 
 #include "brdfcl/io.hpp"
 #include "commands.hpp"
+#include "host/src/mpi/session.hpp"
 
 namespace brdfcl::cli {
 
-void printWarning(const std::string& text) { std::fprintf(stderr, "brdfcl: warning: %s\n", text.c_str()); }
+// Under mpirun every rank reads the same inputs: rank 0 alone speaks for them.
+void printWarning(const std::string& text) {
+  if (mpi::Session::get().rank() == 0) std::fprintf(stderr, "brdfcl: warning: %s\n", text.c_str());
+}
 
 std::vector<MaterialParams> readUserMaterials(const std::string& path, bool strict) {
   MaterialReadOptions options;

@@ -90,6 +90,15 @@ class SampleStream {
   // Starts again from the first row (the grid re-reads directions once per material).
   void rewind();
 
+  // The file's rows without parsing them: NPY's N; for a CSV, the lines after the header up to
+  // the last one that is not blank (one pass over the file, a block at a time).
+  std::size_t countRows();
+  // Narrows the stream to rows [first, first + count) of countRows()'s (count >= 1), so that
+  // ranks of an mpirun job read disjoint parts of one file: next() returns only those, rewind()
+  // goes back to `first`, and messages keep the whole file's line and row numbers. A blank CSV
+  // line in the range is the error it is in the whole file.
+  void selectRows(std::size_t first, std::size_t count);
+
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
@@ -125,6 +134,9 @@ void writeResults(const std::string& path, const std::vector<float>& rgb);
 class ResultWriter {
  public:
   explicit ResultWriter(const std::string& path);
+  // The rows alone, without the CSV header line or the NPY header, in `format` (".csv" or
+  // ".npy") whatever `path` is called: an mpirun rank's part of the one output file.
+  ResultWriter(const std::string& path, const std::string& format, bool header);
   ~ResultWriter();
   ResultWriter(const ResultWriter&) = delete;
   ResultWriter& operator=(const ResultWriter&) = delete;

@@ -64,6 +64,10 @@ struct ShadeOptions {
   // done (one band unless the frame's planes exceed the device's largest allocation, bandRows).
   std::function<void(int done, int total)> progress;
   unsigned seed = 0;  // exact: another seed rotates every pixel's sequence (independent estimates of one image)
+  // Split sum: shade only rows [firstRow, firstRow + rowCount) (rowCount -1: to the bottom) and
+  // leave the others 0; an mpirun rank's rows. A pixel's value never depends on which rows are
+  // shaded with it. Exact mode shades every row.
+  int firstRow = 0, rowCount = -1;
 };
 
 // What the exact integrator measured: the mean over covered pixels (with light) of each pixel's

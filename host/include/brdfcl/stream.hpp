@@ -15,6 +15,11 @@ struct StreamOptions {
   static constexpr std::size_t kMaxChunk = std::size_t(1) << 28;
   std::size_t chunk = kDefaultChunk;  // samples (grid: directions and output rows) per chunk
   bool grid = false;                  // every material x every direction, material-major
+  // Grid only: evaluate materials [firstMaterial, firstMaterial + materialCount) of the list
+  // (an mpirun rank's block); the kernels are still built for the whole list, so each row's
+  // bytes are those of the whole grid.
+  std::size_t firstMaterial = 0;
+  std::size_t materialCount = static_cast<std::size_t>(-1);
   // Read the next chunk and write the previous one on their own threads while the device
   // evaluates (the default); false runs the three steps one after another on the calling thread,
   // which the benchmark BM_EvalFile measures against. The bytes written are the same.

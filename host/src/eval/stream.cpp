@@ -38,13 +38,16 @@ StreamStats stream(const std::vector<MaterialParams>& materials, SampleStream& s
     throw Error("chunk of " + std::to_string(chunk) + " samples is out of range; use 1 to " +
                 std::to_string(StreamOptions::kMaxChunk));
   if (materials.empty()) throw Error("no materials to evaluate");
-  const std::size_t nm = materials.size();
+  // Grid: the block of materials [mBegin, nm) this call evaluates.
+  const std::size_t mBegin = options.grid ? std::min(options.firstMaterial, materials.size()) : 0;
+  const std::size_t nm = options.grid ? mBegin + std::min(options.materialCount, materials.size() - mBegin)
+                                      : materials.size();
   StreamStats stats;
 
   // What to evaluate next, filled on the reader thread; false when nothing is left.
   std::function<bool(Work&)> produce;
   Samples allDirections;  // an in-memory grid's directions
-  std::size_t material = 0;
+  std::size_t material = mBegin;
   if (!options.grid) {
     produce = [&](Work& w) {
       w.m0 = 0;
@@ -107,7 +110,7 @@ StreamStats stream(const std::vector<MaterialParams>& materials, SampleStream& s
     } else {
       result = evaluate.grid(dirs, w.m0, w.mc);
     }
-    if (!options.grid || w.m0 == 0) stats.samples += dirs.size();
+    if (!options.grid || w.m0 == mBegin) stats.samples += dirs.size();
     stats.rows += result.size() / 3;
     ++stats.chunks;
 

@@ -137,16 +137,20 @@ struct ResultWriter::Impl {
   std::string path;
   detail::OutputTarget target;
   std::string tmp;  // the temporary beside a File target, or the spool of NPY to a stream; else empty
-  bool npy = false, committed = false;
+  bool npy = false, committed = false, header = true;
   std::size_t rows = 0;
   std::unique_ptr<OutputFile> file;
   std::vector<std::vector<char>> csvText;  // formatting buffers, kept across chunks
 };
 
-ResultWriter::ResultWriter(const std::string& path) : impl_(std::make_unique<Impl>()) {
+ResultWriter::ResultWriter(const std::string& path) : ResultWriter(path, "", true) {}
+
+ResultWriter::ResultWriter(const std::string& path, const std::string& format, bool header)
+    : impl_(std::make_unique<Impl>()) {
   impl_->path = path;
+  impl_->header = header;
   impl_->target = detail::resolveOutput(path);
-  const std::string ext = detail::outputExtension(path, impl_->target);
+  const std::string ext = format.empty() ? detail::outputExtension(path, impl_->target) : format;
   if (ext != ".csv" && ext != ".npy")
     throw Error("cannot write '" + printable(path, 300) + "': " + detail::kResultsExtensionHint);
   impl_->npy = ext == ".npy";
@@ -162,10 +166,10 @@ ResultWriter::ResultWriter(const std::string& path) : impl_(std::make_unique<Imp
       const int fd = detail::openStream(impl_->target, path);
       impl_->file = std::make_unique<OutputFile>(fd, impl_->target.kind == detail::OutputKind::Stream, path);
     }
-    if (impl_->npy) {
+    if (header && impl_->npy) {
       const std::string h = npyHeader(0);  // patched by commit()
       impl_->file->append(h.data(), h.size());
-    } else {
+    } else if (header) {
       impl_->file->append("r,g,b\n", 6);
     }
   } catch (...) {
@@ -194,7 +198,7 @@ void ResultWriter::append(const float* rgb, std::size_t rows) {
 
 void ResultWriter::commit() {
   if (impl_->committed) throw std::logic_error("ResultWriter::commit twice");
-  if (impl_->npy) {
+  if (impl_->npy && impl_->header) {
     const std::string h = npyHeader(impl_->rows);
     impl_->file->patch(0, h.data(), h.size());
   }

@@ -16,6 +16,7 @@
 #include <cstring>
 #include <limits>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -339,6 +340,8 @@ class CsvReader {
     for (;;) {
       const std::size_t cut = fill(maxRows);
       if (cut == begin_) {
+        if (ranged_ && rows_ < rangeCount_)  // a blank run that the rows of a later range follow
+          throw Error(name_ + ":" + std::to_string(rangeLine_ + rows_) + ": " + emptyLineMessage(layout_));
         if (rows_ == 0) throw Error(name_ + ": no samples (the file has a header but no rows)");
         shrinkSamples(0, out);
         return false;
@@ -353,13 +356,72 @@ class CsvReader {
     offset_ = bodyOffset_;
     begin_ = end_ = 0;
     eof_ = false;
-    line_ = 2;
+    line_ = rangeLine_;
     rows_ = 0;
     pendingBlank_ = 0;
   }
 
+  // Lines after the header up to the last non-blank one, by parseCsvLines's rule for a blank
+  // line (spaces and tabs, and one '\r' before its end).
+  std::size_t countRows() const {
+    std::vector<char> block(kBlock);
+    std::size_t lines = 0, rows = 0;
+    bool nonBlank = false, cr = false, any = false;
+    for (std::size_t at = bodyOffset_;;) {
+      const std::size_t n = src_.readAt(at, block.data(), block.size());
+      if (n == 0) break;
+      for (std::size_t i = 0; i < n; ++i) {
+        const char c = block[i];
+        if (cr && c != '\n') nonBlank = true;
+        cr = false;
+        any = true;
+        if (c == '\n') {
+          ++lines;
+          if (nonBlank) rows = lines;
+          nonBlank = any = false;
+        } else if (c == '\r') {
+          cr = true;
+        } else if (!isBlank(c)) {
+          nonBlank = true;
+        }
+      }
+      at += n;
+    }
+    if (any && nonBlank) rows = lines + 1;
+    return rows;
+  }
+
+  // Finds the byte range of lines [first, first + count) after the header and reads only it.
+  void selectRows(std::size_t first, std::size_t count) {
+    std::vector<char> block(kBlock);
+    std::size_t lines = 0, start = first == 0 ? bodyOffset_ : std::string::npos, stop = src_.size();
+    for (std::size_t at = bodyOffset_; lines < first + count;) {
+      const std::size_t n = src_.readAt(at, block.data(), block.size());
+      if (n == 0) break;
+      for (const char* p = block.data(); (p = findNewline(p, block.data() + n)) != nullptr; ++p) {
+        ++lines;
+        const std::size_t after = at + static_cast<std::size_t>(p - block.data()) + 1;
+        if (lines == first) start = after;
+        if (lines == first + count) {
+          stop = after;
+          break;
+        }
+      }
+      at += n;
+    }
+    if (start == std::string::npos) throw std::logic_error("SampleStream::selectRows: rows past the end");
+    bodyOffset_ = start;
+    limit_ = stop;
+    ranged_ = true;
+    rangeCount_ = count;
+    rangeLine_ = 2 + first;
+    rewind();
+  }
+
  private:
   static constexpr std::size_t kBlock = std::size_t(4) << 20;
+
+  std::size_t limit() const { return std::min(src_.size(), limit_); }
 
   void readHeader(bool optional) {
     const std::string expectedHeader = std::string("'") + kHeaderWithMaterial + "'" +
@@ -462,14 +524,16 @@ class CsvReader {
         begin_ = 0;
       }
       std::size_t want = kBlock;
-      if (src_.size() >= offset_) {
+      if (limit() >= offset_) {
         // +1 sees the end of the file in the same read. A whole-file read (readSamples) sizes
         // the buffer once instead of doubling it; a small file does not get a whole block.
-        const std::size_t rest = src_.size() - offset_ + 1;
+        const std::size_t rest = limit() - offset_ + 1;
         want = lines == std::numeric_limits<std::size_t>::max() ? rest : std::min(kBlock, rest);
       }
       if (buf_.size() < end_ + want) buf_.resize(std::max(end_ + want, 2 * buf_.size()));
-      const std::size_t n = src_.readAt(offset_, buf_.data() + end_, buf_.size() - end_);
+      std::size_t room = buf_.size() - end_;
+      if (ranged_) room = std::min(room, limit_ > offset_ ? limit_ - offset_ : 0);
+      const std::size_t n = room == 0 ? 0 : src_.readAt(offset_, buf_.data() + end_, room);
       if (n == 0) eof_ = true;
       offset_ += n;
       end_ += n;
@@ -529,6 +593,10 @@ class CsvReader {
   std::size_t line_ = 2;             // 1-based file line of buf_[begin_]; the header is line 1
   std::size_t rows_ = 0;             // rows returned so far
   std::size_t pendingBlank_ = 0;     // first line of a blank run that ended the last chunk
+  // selectRows: the byte after the last line of the range, its rows and its first line.
+  std::size_t limit_ = std::numeric_limits<std::size_t>::max();
+  bool ranged_ = false;
+  std::size_t rangeCount_ = 0, rangeLine_ = 2;
 };
 
 // ---------------------------------------------------------------------------------------------
@@ -710,11 +778,11 @@ class NpyReader {
   bool hasMaterial() const { return cols_ == 7; }
 
   bool next(std::size_t maxRows, Samples& out) {
-    if (pos_ == rows_) {
+    if (pos_ == end_) {
       shrinkSamples(0, out);
       return false;
     }
-    const std::size_t count = std::min<std::size_t>(maxRows, rows_ - pos_);
+    const std::size_t count = std::min<std::size_t>(maxRows, end_ - pos_);
     raw_.resize(count * rowBytes());
     if (fortran_) {
       for (int j = 0; j < cols_; ++j)
@@ -740,7 +808,15 @@ class NpyReader {
     return true;
   }
 
-  void rewind() { pos_ = 0; }
+  void rewind() { pos_ = first_; }
+
+  std::size_t countRows() const { return rows_; }
+
+  void selectRows(std::size_t first, std::size_t count) {
+    if (first > rows_ || count > rows_ - first) throw std::logic_error("SampleStream::selectRows: rows past the end");
+    first_ = pos_ = first;
+    end_ = first + count;
+  }
 
  private:
   std::size_t rowBytes() const { return static_cast<std::size_t>(cols_) * itemSize_; }
@@ -809,7 +885,7 @@ class NpyReader {
       throw Error(name_ + ": truncated: expected " + std::to_string(h.shape[0]) + " rows of " + std::to_string(cols_) +
                   (itemSize_ == 4 ? " float32" : " float64") + ", file has " + std::to_string(rowsPresent) +
                   " complete rows");
-    rows_ = static_cast<std::size_t>(h.shape[0]);
+    rows_ = end_ = static_cast<std::size_t>(h.shape[0]);
   }
 
   const Source& src_;
@@ -819,6 +895,7 @@ class NpyReader {
   std::size_t itemSize_ = 0;
   bool fortran_ = false;
   std::size_t dataStart_ = 0, rows_ = 0, pos_ = 0;
+  std::size_t first_ = 0, end_ = 0;  // the rows next() returns (selectRows)
   std::vector<char> raw_;
 };
 
@@ -859,6 +936,16 @@ void SampleStream::rewind() {
     impl_->npy->rewind();
   else
     impl_->csv->rewind();
+}
+
+std::size_t SampleStream::countRows() { return impl_->npy ? impl_->npy->countRows() : impl_->csv->countRows(); }
+
+void SampleStream::selectRows(std::size_t first, std::size_t count) {
+  if (count == 0) throw std::invalid_argument("SampleStream::selectRows: count must be at least 1");
+  if (impl_->npy)
+    impl_->npy->selectRows(first, count);
+  else
+    impl_->csv->selectRows(first, count);
 }
 
 Samples readSamples(const std::string& path, std::size_t materialCount, bool materialColumnOptional) {

@@ -672,14 +672,18 @@ Image Shader::shade(const GBuffer& g, const ShadeOptions& options, ShadeStats* s
   };
   try {
     const auto& ctx = s.rt.context();
+    // Under mpirun, this rank's rows (ShadeOptions::firstRow, rowCount); the exact integrator's
+    // split-sum pass always covers the whole frame.
+    const int yBegin = exact ? 0 : std::clamp(options.firstRow, 0, g.height);
+    const int yEnd = exact || options.rowCount < 0 ? g.height : std::min(g.height, yBegin + options.rowCount);
     if (peers_.empty()) {
-      shadeRows(s, 0, g.height, true);
+      shadeRows(s, yBegin, yEnd, true);
     } else {
       // Row bands across the devices (DeviceSet); progress counts devices done.
       std::mutex progressMutex;
       int done = 0;
-      devices_->run(std::size_t(g.height), 1, [&](std::size_t dev, std::size_t first, std::size_t count) {
-        shadeRows(dev == 0 ? s : *peers_[dev - 1]->s_, int(first), int(first + count), false);
+      devices_->run(std::size_t(yEnd - yBegin), 1, [&](std::size_t dev, std::size_t first, std::size_t count) {
+        shadeRows(dev == 0 ? s : *peers_[dev - 1]->s_, yBegin + int(first), yBegin + int(first + count), false);
         std::lock_guard<std::mutex> lock(progressMutex);
         if (!exact && options.progress) options.progress(++done, int(devices_->size()));
       });
