@@ -84,7 +84,7 @@ TEST(Directions, Float64RunsEqualPerRowAndLeaveExtremesUndone) {
 TEST(Directions, StridedRowsAndIndices) {
   const std::size_t n = 3000;
   const auto d = randomRows(2 * n, -20, 20, 3);
-  for (int stride : {6, 7, 9}) {
+  for (int stride : {7, 9}) {
     std::vector<float> file(stride * n);
     for (std::size_t i = 0; i < n; ++i) {
       file[stride * i] = float(i % 5);
