@@ -3,6 +3,7 @@
 // rescaled extreme vectors equal their unscaled selves.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -133,7 +134,8 @@ TEST(Directions, AccurateAndScaleInvariant) {
                                       (long double)row[2] * row[2]);
     for (int c = 0; c < 3; ++c) {
       const long double exact = row[c] / len;
-      const long double ulp = std::ldexp(1.0L, std::ilogb(float(exact)) - 23);
+      // ilogb(0) is INT_MIN: a zero component is held to the smallest normal float's ulp.
+      const long double ulp = std::ldexp(1.0L, std::max(std::ilogb(float(exact)), -126) - 23);
       ASSERT_LE(std::fabs(got[c] - exact), 3 * ulp) << "row " << i << " component " << c << ": " << got[c]
                                                     << " vs " << double(exact);
     }
