@@ -41,8 +41,11 @@ class SoaBatch;
 // Thread safety. One Runtime may be shared by any number of threads (see runtime.hpp), and so
 // may one Evaluator: evaluate(), evaluateGrid() and sheenAlbedo() may run concurrently on the
 // same Evaluator (the table is baked once, under a lock; options() never changes). Each call
-// creates its own cl::Kernel and buffers, so concurrent calls never share kernel arguments and
-// give bit-for-bit the results of the same calls made one after another. The simplest pattern
+// creates its own cl::Kernel and takes its planes from the evaluator's pool (under a lock; a set
+// serves one call at a time), so concurrent calls never share kernel arguments or memory and
+// give bit-for-bit the results of the same calls made one after another. The pool keeps up to
+// four idle sets for the next calls (about 40 MiB each at the default chunk; a large grid's are
+// larger) until the Evaluator is destroyed. The simplest pattern
 // is one Evaluator per thread on one shared Runtime. A SoaBatch is NOT thread-safe: use each
 // batch from one thread at a time (different batches, even of one Evaluator, may run
 // concurrently). The Evaluator and Runtime must outlive every call and every SoaBatch.
