@@ -87,9 +87,10 @@ void BM_EvalGrid(benchmark::State& state) {
 // The library's in-memory paths on the kernel's own workload (the same pairs and materials as
 // BM_Eval/<lobe>/<n>, `materials` random ones): what the Python module calls. `arrays` is
 // evaluateArrays on float32 (N, 3) rows, checked and normalized, into a reused output;
-// `grid` is Evaluator::evaluateGrid of one material, returning a fresh vector; `kernel` runs the
+// `grid` is Evaluator::evaluateGrid of one material into a reused output, `grid-fresh` the same
+// returning a fresh vector (whose pages every call faults in); `kernel` runs the
 // batch alone, so each row's items/s divided by its kernel row's is the fraction of kernel speed.
-enum class InMemory { Kernel, Arrays, Grid };
+enum class InMemory { Kernel, Arrays, Grid, GridFresh };
 void BM_InMemory(benchmark::State& state, std::string lobe, InMemory path) {
   const std::size_t n = std::size_t(state.range(0)), materials = std::size_t(state.range(1));
   auto b = std::make_unique<bench::Bench>(runtime(), lobe, n, 1, materials);
@@ -109,13 +110,14 @@ void BM_InMemory(benchmark::State& state, std::string lobe, InMemory path) {
   a.V.data = V.data();
   a.material = materials > 1 ? index.data() : nullptr;
   a.count = n;
-  if (path == InMemory::Grid) s.L = L, s.V = V;
+  if (path == InMemory::Grid || path == InMemory::GridFresh) s.L = L, s.V = V;
   const auto& mats = b->workload().materials;
   auto once = [&] {
     switch (path) {
       case InMemory::Kernel: b->runKernel(); break;
       case InMemory::Arrays: evaluateArrays(b->evaluator(), mats, a, rgb.data()); break;
-      case InMemory::Grid: benchmark::DoNotOptimize(b->evaluator().evaluateGrid(mats, s)); break;
+      case InMemory::Grid: b->evaluator().evaluateGrid(mats, s, rgb.data()); break;
+      case InMemory::GridFresh: benchmark::DoNotOptimize(b->evaluator().evaluateGrid(mats, s)); break;
     }
   };
   once();
@@ -213,8 +215,8 @@ void registerAll() {
   // Interleaved, so that each library row sits next to its kernel row in one run.
   for (const auto& [lobe, materials] : std::vector<std::pair<std::string, int>>{{"all", 256}, {"specular", 1}}) {
     for (auto [name, path] : {std::pair{"kernel", InMemory::Kernel}, std::pair{"arrays", InMemory::Arrays},
-                              std::pair{"grid", InMemory::Grid}}) {
-      if (path == InMemory::Grid && materials != 1) continue;
+                              std::pair{"grid", InMemory::Grid}, std::pair{"grid-fresh", InMemory::GridFresh}}) {
+      if ((path == InMemory::Grid || path == InMemory::GridFresh) && materials != 1) continue;
       benchmark::RegisterBenchmark(("BM_InMemory/" + lobe + "/" + name).c_str(), BM_InMemory, lobe, path)
           ->Args({1 << 22, materials})->ArgNames({"n", "materials"})->UseRealTime()->Unit(benchmark::kMillisecond);
     }

@@ -1,22 +1,9 @@
 /* Batch BRDF evaluation. Directions arrive as SoA planes (Lx Ly Lz Vx Vy Vz) and results leave
-   as planes (r g b). Each work-item handles BRDFCL_W consecutive samples, so the host pads every
-   plane to a multiple of BRDFCL_W. */
+   as planes (r g b), or both as the caller's interleaved (N, 3) rows (eval_rows, eval_grid_rows).
+   Each work-item handles BRDFCL_W consecutive samples, so the host pads every plane to a multiple
+   of BRDFCL_W; the row kernels instead treat the last, partial group of an array on its own. */
 #include "brdf/material.h"
-
-BRDF_FN void load_directions(__global const float* dirs, uint stride, uint i, vec3w* L, vec3w* V) {
-  L->x = VLOADW(i, dirs);
-  L->y = VLOADW(i, dirs + stride);
-  L->z = VLOADW(i, dirs + 2 * stride);
-  V->x = VLOADW(i, dirs + 3 * stride);
-  V->y = VLOADW(i, dirs + 4 * stride);
-  V->z = VLOADW(i, dirs + 5 * stride);
-}
-
-BRDF_FN void store_rgb(rgbw f, __global float* out, ulong stride, uint i) {
-  VSTOREW(f.r, i, out);
-  VSTOREW(f.g, i, out + stride);
-  VSTOREW(f.b, i, out + 2 * stride);
-}
+#include "common/rows.h"
 
 /* One material per sample, gathered by index. Every plane is its own buffer, so callers can
    hand over their arrays in place and a plane stays under the device's largest allocation. */
@@ -38,17 +25,99 @@ __kernel void eval_samples(__global const float* restrict Lx, __global const flo
   VSTOREW(f.b, i, out_b);
 }
 
-/* Every material (global id 1, from `first_material`) x every direction pair (global id 0);
-   output material-major, each material's block `stride` samples long. */
-__kernel void eval_grid(__global const float* restrict dirs, uint stride,
-                        __global const brdfcl_material* restrict materials, uint first_material,
-                        __global const float* restrict sheen_e, int sheen_e_size,
-                        __global float* restrict out) {
-  uint i = get_global_id(0);
+/* Lowers *bad_row to the first row (`first` is lane 0's) whose lane is set in `bad`. */
+BRDF_FN void report_bad_rows(intw bad, uint first, __global uint* bad_row) {
+  if (!ANYW(bad)) return;
+  int lanes[BRDFCL_W];
+  VSTOREW(bad, 0, lanes);
+  uint k = 0;
+  while (k + 1 < BRDFCL_W && !lanes[k]) ++k;
+  atomic_min(bad_row, first + k);
+}
+
+/* The lanes holding one of the first n rows of the group (the rest lie past the array's end). */
+BRDF_FN intw lanes_before(uint n) {
+#if BRDFCL_W == 1
+  return n > 0;
+#else
+  intw lane = (intw)(ROWS_LANES(ROWS_LANE_INDEX, 0));
+  return lane < (int)n;
+#endif
+}
+
+/* The material indices of the first n rows at p (the lanes past them read 0). */
+#define INDICES_BODY(T)                                          \
+  if (n == BRDFCL_W) return CONVERT_LONGW(VLOADW(0, p));         \
+  T tmp[BRDFCL_W];                                               \
+  for (uint j = 0; j < BRDFCL_W; ++j) tmp[j] = j < n ? p[j] : 0; \
+  return CONVERT_LONGW(VLOADW(0, tmp));
+BRDF_FN longw load_indices_long(__global const long* p, uint n) { INDICES_BODY(long) }
+BRDF_FN longw load_indices_uint(__global const uint* p, uint n) { INDICES_BODY(uint) }
+
+/* Rows where the caller holds them: L, V and f as (count, 3) float rows, each at its offset (in
+   elements) from the start of its buffer, so that the host can hand over any array in place.
+   With `normalize`, L and V are normalized here by the samples readers' arithmetic (rows.h);
+   without, they must be unit vectors, and only NaN and infinities are caught. `index` holds a
+   material index a row, int64 (index_longs) or uint32, or is null: material 0 everywhere. A row whose L or V is no direction, or whose index is not in
+   [0, material_count), lowers *bad_row to its number, and its f is undefined. */
+__kernel void eval_rows(__global const float* restrict L, uint L_at, __global const float* restrict V, uint V_at,
+                        __global const uint* restrict index, uint index_at, int index_longs, uint material_count, uint count,
+                        int normalize, __global const brdfcl_material* restrict materials,
+                        __global const float* restrict sheen_e, int sheen_e_size, __global float* restrict out,
+                        uint out_at, __global uint* restrict bad_row) {
+  uint first = get_global_id(0) * BRDFCL_W;
+  if (first >= count) return;
+  uint n = min(count - first, (uint)BRDFCL_W);
+  L += L_at + 3 * (ulong)first;
+  V += V_at + 3 * (ulong)first;
+  out += out_at + 3 * (ulong)first;
+  vec3w l = n == BRDFCL_W ? rows_load(L) : rows_load_partial(L, n);
+  vec3w v = n == BRDFCL_W ? rows_load(V) : rows_load_partial(V, n);
+  intw bad = normalize ? rows_normalize(&l) | rows_normalize(&v) : rows_not_finite(l) | rows_not_finite(v);
+  material_lanes m;
+  if (index) {
+    /* Indices are checked as longs before narrowing, so -1 or 2^32 never alias a material. */
+    longw k = index_longs ? load_indices_long((__global const long*)index + index_at + first, n)
+                          : load_indices_uint(index + index_at + first, n);
+    intw inside = CONVERT_INTW((k >= 0) & (k < (long)material_count));
+    bad |= !inside;
+    m = material_gather(materials, AS_UINTW(select((intw)(0), CONVERT_INTW(k), inside)));
+  } else {
+    m = material_splat(materials);
+  }
+  report_bad_rows(bad & lanes_before(n), first, bad_row);
+  rgbw f = brdf_material(m, l, v, sheen_e, sheen_e_size);
+  if (n == BRDFCL_W)
+    rows_store(f, out);
+  else
+    rows_store_partial(f, out, n);
+}
+
+/* Every material (global id 1, from `first_material`) x every
+   row of L and V (global id 0), f written material-major: material k's row i at out row
+   k * out_rows + i. Rows are checked (material 0's work-items report them) and normalized as in
+   eval_rows. */
+__kernel void eval_grid_rows(__global const float* restrict L, uint L_at, __global const float* restrict V,
+                             uint V_at, uint count, int normalize,
+                             __global const brdfcl_material* restrict materials, uint first_material,
+                             __global const float* restrict sheen_e, int sheen_e_size,
+                             __global float* restrict out, uint out_at, ulong out_rows,
+                             __global uint* restrict bad_row) {
+  uint first = get_global_id(0) * BRDFCL_W;
+  if (first >= count) return;
+  uint n = min(count - first, (uint)BRDFCL_W);
   ulong material = get_global_id(1);
-  ulong plane = (ulong)stride * get_global_size(1);
-  vec3w L, V;
-  load_directions(dirs, stride, i, &L, &V);
+  L += L_at + 3 * (ulong)first;
+  V += V_at + 3 * (ulong)first;
+  out += out_at + 3 * (material * out_rows + first);
+  vec3w l = n == BRDFCL_W ? rows_load(L) : rows_load_partial(L, n);
+  vec3w v = n == BRDFCL_W ? rows_load(V) : rows_load_partial(V, n);
+  intw bad = normalize ? rows_normalize(&l) | rows_normalize(&v) : rows_not_finite(l) | rows_not_finite(v);
+  if (material == 0) report_bad_rows(bad & lanes_before(n), first, bad_row);
   material_lanes m = material_splat(materials + first_material + material);
-  store_rgb(brdf_material(m, L, V, sheen_e, sheen_e_size), out + material * stride, plane, i);
+  rgbw f = brdf_material(m, l, v, sheen_e, sheen_e_size);
+  if (n == BRDFCL_W)
+    rows_store(f, out);
+  else
+    rows_store_partial(f, out, n);
 }

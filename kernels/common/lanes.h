@@ -14,41 +14,53 @@
 typedef float realw;
 typedef int intw;
 typedef uint uintw;
+typedef long longw;
 #define VLOADW(i, p) ((p)[(i)])
 #define VSTOREW(v, i, p) ((p)[(i)] = (v))
 #define CONVERT_REALW(x) ((float)(x))
 #define CONVERT_INTW(x) convert_int(x)
+#define CONVERT_LONGW(x) convert_long(x)
 #define AS_INTW(x) as_int(x)
+#define AS_UINTW(x) as_uint(x)
 #define AS_REALW(x) as_float(x)
 #elif BRDFCL_W == 4
 typedef float4 realw;
 typedef int4 intw;
 typedef uint4 uintw;
+typedef long4 longw;
 #define VLOADW vload4
 #define VSTOREW vstore4
 #define CONVERT_REALW convert_float4
 #define CONVERT_INTW convert_int4
+#define CONVERT_LONGW convert_long4
 #define AS_INTW as_int4
+#define AS_UINTW as_uint4
 #define AS_REALW as_float4
 #elif BRDFCL_W == 8
 typedef float8 realw;
 typedef int8 intw;
 typedef uint8 uintw;
+typedef long8 longw;
 #define VLOADW vload8
 #define VSTOREW vstore8
 #define CONVERT_REALW convert_float8
 #define CONVERT_INTW convert_int8
+#define CONVERT_LONGW convert_long8
 #define AS_INTW as_int8
+#define AS_UINTW as_uint8
 #define AS_REALW as_float8
 #elif BRDFCL_W == 16
 typedef float16 realw;
 typedef int16 intw;
 typedef uint16 uintw;
+typedef long16 longw;
 #define VLOADW vload16
 #define VSTOREW vstore16
 #define CONVERT_REALW convert_float16
 #define CONVERT_INTW convert_int16
+#define CONVERT_LONGW convert_long16
 #define AS_INTW as_int16
+#define AS_UINTW as_uint16
 #define AS_REALW as_float16
 #else
 #error "BRDFCL_W must be 1, 4, 8 or 16"

@@ -34,6 +34,23 @@ inline Runtime& runtime() {
   return rt;
 }
 
+// The batch kernels at a forced lane width for the object's lifetime (laneShape reads
+// BRDFCL_LANES on every batch); 0 leaves the device's own width.
+class ForcedLanes {
+ public:
+  explicit ForcedLanes(int w) {
+    if (const char* e = std::getenv("BRDFCL_LANES")) saved_ = e, had_ = true;
+    if (w) ::setenv("BRDFCL_LANES", std::to_string(w).c_str(), 1);
+  }
+  ~ForcedLanes() { had_ ? ::setenv("BRDFCL_LANES", saved_.c_str(), 1) : ::unsetenv("BRDFCL_LANES"); }
+  ForcedLanes(const ForcedLanes&) = delete;
+  ForcedLanes& operator=(const ForcedLanes&) = delete;
+
+ private:
+  std::string saved_;
+  bool had_ = false;
+};
+
 // BRDFCL_TEST_SEED regenerates every random input; failures print the seed in use.
 inline std::uint64_t seed() {
   static const std::uint64_t s = [] {

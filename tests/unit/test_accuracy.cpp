@@ -88,20 +88,6 @@ TEST_P(KernelVsReference, MatchesWithinTolerance) {
 
 INSTANTIATE_TEST_SUITE_P(Modes, KernelVsReference, testing::ValuesIn(allModes()), ModeName());
 
-// The batch kernels at a forced lane width (laneShape reads BRDFCL_LANES on every batch).
-class ForcedLanes {
- public:
-  explicit ForcedLanes(int w) {
-    if (const char* e = std::getenv("BRDFCL_LANES")) saved_ = e, had_ = true;
-    ::setenv("BRDFCL_LANES", std::to_string(w).c_str(), 1);
-  }
-  ~ForcedLanes() { had_ ? ::setenv("BRDFCL_LANES", saved_.c_str(), 1) : ::unsetenv("BRDFCL_LANES"); }
-
- private:
-  std::string saved_;
-  bool had_ = false;
-};
-
 struct LanesMode {
   int lanes;
   EvalOptions options;

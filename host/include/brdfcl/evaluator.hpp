@@ -76,6 +76,37 @@ class Evaluator {
   std::vector<float> evaluateGrid(const std::vector<MaterialParams>& materials, const Samples& samples,
                                   std::size_t firstMaterial, std::size_t materialCount);
 
+  // The same results written to caller memory (3 floats a sample; materials x samples x 3 for
+  // the grid) instead of a fresh vector, whose pages a large call would fault in every time.
+  void evaluate(const std::vector<MaterialParams>& materials, const Samples& samples, float* rgb);
+  void evaluateGrid(const std::vector<MaterialParams>& materials, const Samples& samples, float* rgb);
+  void evaluateGrid(const std::vector<MaterialParams>& materials, const Samples& samples, std::size_t firstMaterial,
+                    std::size_t materialCount, float* rgb);
+
+  // Rows where the caller holds them, evaluated in place: the kernels read `rows.count` rows of
+  // L and V (3 floats each, contiguous) and the material indices, and write 3 floats a row
+  // to rgb, all through CL_MEM_USE_HOST_PTR on this very memory (no copy on CPU devices). With
+  // `normalize` each direction is normalized on the device by the samples readers' arithmetic
+  // (the bits of normalizeDirection); without, L and V must be unit vectors. Returns the lowest
+  // row that holds no direction (NaN, infinite or zero) or whose index is not in
+  // [0, materials.size()), or rows.count when none does; rgb is then undefined for that row and
+  // the caller words the problem (evaluateArrays, evaluate(), evaluateGrid() do). Materials are
+  // checked as in evaluate().
+  struct Rows {
+    const float* L = nullptr;
+    const float* V = nullptr;
+    const std::int64_t* index = nullptr;  // one material index a row (numpy's int64), or nullptr
+    std::size_t count = 0;
+    std::size_t launch = 0;                  // rows a launch takes at most (0: as many as the device allows)
+    const std::uint32_t* index32 = nullptr;  // instead of `index`: Samples::material; neither: material 0
+  };
+  std::size_t evaluateRows(const std::vector<MaterialParams>& materials, const Rows& rows, float* rgb,
+                           bool normalize);
+  // Every material of [firstMaterial, firstMaterial + materialCount) x every row, material-major
+  // (the indices are ignored): material k's row i at rgb + 3 * ((k - firstMaterial) * rows.count + i).
+  std::size_t evaluateGridRows(const std::vector<MaterialParams>& materials, const Rows& rows, float* rgb,
+                               bool normalize, std::size_t firstMaterial, std::size_t materialCount);
+
   // The table this evaluator's sheen options use (baked on first use).
   const SheenAlbedoTable& sheenAlbedo();
 

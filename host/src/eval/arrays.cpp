@@ -1,6 +1,7 @@
-// evaluateArrays / evaluateGridArrays (brdfcl/arrays.hpp): in-memory directions are checked and
-// normalized a chunk at a time straight into a SoaBatch's planes (or a grid chunk), on several
-// threads, by the samples readers' own arithmetic (io/directions.hpp): the same bits as `brdfcl eval`.
+// evaluateArrays / evaluateGridArrays (brdfcl/arrays.hpp): float32 rows go to the row kernels
+// where they lie, normalized and checked on the device (Evaluator::evaluateRows); float64 rows are
+// checked and normalized a chunk at a time into a SoaBatch's planes (or a grid chunk), on several
+// threads. Both use the samples readers' arithmetic (io/directions.hpp): the bits of `brdfcl eval`.
 #include "brdfcl/arrays.hpp"
 
 #include <algorithm>
@@ -135,6 +136,18 @@ void checkArrays(const ArraySamples& s) {
   if (s.count > 0 && (!s.L.data || !s.V.data)) throw Error("internal: direction arrays without data", 3);
 }
 
+bool bothFloat32(const ArraySamples& s) {
+  return s.L.type == DirectionArray::Type::Float32 && s.V.type == DirectionArray::Type::Float32;
+}
+
+// The device found row `bad` wanting: the host check of that one row words the problem.
+void throwBadRow(const ArraySamples& s, std::size_t bad, std::size_t materialCount, bool withIndex) {
+  float L[3], V[3];
+  std::uint32_t index = 0;
+  normalizeRows(s, bad, 1, materialCount, Dest{{L, L + 1, L + 2}, {V, V + 1, V + 2}, 3, withIndex ? &index : nullptr});
+  throw Error(fmt::format("internal: row {} reported as bad by the device", bad), 3);
+}
+
 }  // namespace
 
 void evaluateArrays(Evaluator& evaluator, const std::vector<MaterialParams>& materials, const ArraySamples& s,
@@ -143,6 +156,13 @@ void evaluateArrays(Evaluator& evaluator, const std::vector<MaterialParams>& mat
   if (materials.empty()) throw Error("no materials to evaluate");
   if (!s.material && materials.size() != 1)
     throw Error(fmt::format("{} materials but no material index; give one index per sample", materials.size()));
+  if (bothFloat32(s)) {
+    const Evaluator::Rows rows{static_cast<const float*>(s.L.data), static_cast<const float*>(s.V.data), s.material,
+                               s.count, chunk};
+    const std::size_t bad = evaluator.evaluateRows(materials, rows, rgb, true);
+    if (bad < s.count) throwBadRow(s, bad, materials.size(), true);
+    return;
+  }
   if (chunk == 0) chunk = kDefaultChunk;
   // Two batches in turn: the host checks and normalizes chunk k + 1 into one while the device
   // evaluates chunk k in the other, so neither waits for the other to wake up.
@@ -190,8 +210,14 @@ void evaluateGridArrays(Evaluator& evaluator, const std::vector<MaterialParams>&
                         float* rgb, std::size_t chunk) {
   checkArrays(s);
   if (materials.empty()) throw Error("no materials to evaluate");
-  if (chunk == 0) chunk = kDefaultChunk;
   const std::size_t n = s.count, nm = materials.size();
+  if (bothFloat32(s)) {
+    const Evaluator::Rows rows{static_cast<const float*>(s.L.data), static_cast<const float*>(s.V.data), nullptr, n, chunk};
+    const std::size_t bad = evaluator.evaluateGridRows(materials, rows, rgb, true, 0, nm);
+    if (bad < n) throwBadRow(s, bad, nm, false);
+    return;
+  }
+  if (chunk == 0) chunk = kDefaultChunk;
   Samples dirs;
   for (std::size_t first = 0; first < n; first += chunk) {
     const std::size_t count = std::min(chunk, n - first);

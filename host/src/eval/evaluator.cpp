@@ -15,6 +15,7 @@
 #include <fmt/format.h>
 
 #include "brdfcl/error.hpp"
+#include "eval/batch.hpp"
 #include "model/pack.hpp"
 #include "parity/engine_tables.hpp"
 
@@ -67,15 +68,19 @@ bool allFinite(const std::vector<float>& v) {
   return any == 0;
 }
 
-void checkDirections(const Samples& s) {
+// "sample 7: Vz is not finite: inf" for the first non-finite component of sample i, if any.
+void checkSample(const Samples& s, std::size_t i) {
   static const char* const kNames[6] = {"Lx", "Ly", "Lz", "Vx", "Vy", "Vz"};
+  for (int k = 0; k < 6; ++k) {
+    const float v = k < 3 ? s.L[3 * i + k] : s.V[3 * i + k - 3];
+    if (!std::isfinite(v))
+      throw Error(fmt::format("sample {}: {} is not finite: {}", i, kNames[k], std::isnan(v) ? "nan" : v > 0 ? "inf" : "-inf"));
+  }
+}
+
+void checkDirections(const Samples& s) {
   if (allFinite(s.L) && allFinite(s.V)) return;
-  for (std::size_t i = 0; i < s.size(); ++i)
-    for (int k = 0; k < 6; ++k) {
-      const float v = k < 3 ? s.L[3 * i + k] : s.V[3 * i + k - 3];
-      if (!std::isfinite(v))
-        throw Error(fmt::format("sample {}: {} is not finite: {}", i, kNames[k], std::isnan(v) ? "nan" : v > 0 ? "inf" : "-inf"));
-    }
+  for (std::size_t i = 0; i < s.size(); ++i) checkSample(s, i);
 }
 
 // Interleaved x y z rows to three planes and back, one pass each; the planes never alias the
@@ -98,17 +103,6 @@ void toRows(const float* __restrict x, const float* __restrict y, const float* _
   }
 }
 
-// Lays samples [first, first + count) out as the 6 planes the kernels read.
-void fillDirectionPlanes(const Samples& s, std::size_t first, std::size_t count, std::size_t stride, float* planes) {
-  for (std::size_t i = 0; i < count; ++i) {
-    const float* L = &s.L[3 * (first + i)];
-    const float* V = &s.V[3 * (first + i)];
-    for (int c = 0; c < 3; ++c) {
-      planes[c * stride + i] = L[c];
-      planes[(3 + c) * stride + i] = V[c];
-    }
-  }
-}
 }  // namespace
 
 Evaluator::Evaluator(Runtime& rt, EvalOptions options) : rt_(rt), options_(options) { checkProfileOptions(options); }
@@ -186,17 +180,6 @@ const SheenAlbedoTable& Evaluator::sheenAlbedo() {
                                                                   sheenTableOptions(options_).sheenVisibility));
   return *table_;
 }
-
-// What every launch of a batch shares: the program specialised to its feature set, the packed
-// materials and the sheen albedo table (a 2x2 dummy when no material needs it).
-struct Evaluator::Batch {
-  LaneShape shape;  // the device's lane width and work-group size (runtime.hpp)
-  cl::Program program;
-  std::vector<brdfcl_material> packed;
-  std::vector<float> table = std::vector<float>(4, 0.0f);
-  int tableSize = 2;
-  cl::Buffer materials, tableBuffer;
-};
 
 Evaluator::Batch Evaluator::prepare(const std::vector<MaterialParams>& materials) {
   if (materials.empty()) throw Error("no materials to evaluate");
@@ -367,9 +350,7 @@ std::size_t Evaluator::launchLimit() const { return chunkSize(rt_, 4); }
 std::vector<float> Evaluator::evaluate(const std::vector<MaterialParams>& materials, const Samples& samples) {
   const std::size_t n = samples.size();
   std::vector<float> rgb(3 * n);
-  if (n == 0) return rgb;
-  SoaBatch batch(*this, materials, std::min(roundUp(n, kLanes), launchLimit()), SoaBatch::Scratch{});
-  batch.evaluate(samples, rgb.data());
+  evaluate(materials, samples, rgb.data());
   return rgb;
 }
 
@@ -413,72 +394,49 @@ std::vector<float> Evaluator::evaluateGrid(const std::vector<MaterialParams>& ma
   if (firstMaterial > materials.size() || materialCount > materials.size() - firstMaterial)
     throw Error(fmt::format("internal: materials [{}, {}) of {}", firstMaterial, firstMaterial + materialCount,
                             materials.size()), 3);
-  const std::size_t n = samples.size(), nm = materialCount;
-  checkDirections(samples);
-  std::vector<float> rgb(3 * n * nm);
-  if (n == 0 || nm == 0) return rgb;
-
-  try {
-    Batch b = prepare(materials);
-    cl::Kernel kernel(b.program, "eval_grid");
-    // Directions in chunks; within a chunk, materials in groups whose output fits one launch.
-    const std::size_t chunk = std::min(roundUp(n, kLanes), chunkSize(rt_, 6 * 4));
-    const std::size_t outLimit = chunkSize(rt_, 3 * 4);
-    const std::size_t materialsPerLaunch = std::max<std::size_t>(1, std::min(nm, outLimit / chunk));
-    // Two pooled planes sets used in place (zero copy on CPU devices): the six direction planes
-    // in the first, the r g b planes of every material of a launch in the second.
-    std::unique_ptr<Planes> dirs = takePlanes(roundUp(6 * chunk, kPage / 4), 1);
-    if (!dirs) dirs = std::make_unique<Planes>(rt_.context(), roundUp(6 * chunk, kPage / 4), 1);
-    std::unique_ptr<Planes> outs = takePlanes(roundUp(3 * chunk * materialsPerLaunch, kPage / 4), 1);
-    if (!outs) outs = std::make_unique<Planes>(rt_.context(), roundUp(3 * chunk * materialsPerLaunch, kPage / 4), 1);
-    auto& q = rt_.queue();
-    // Declared after the planes, so destroyed before them: on an error the device finishes
-    // with their memory before it is freed.
-    struct Drain {
-      cl::CommandQueue& q;
-      ~Drain() { q.finish(); }
-    } drain{q};
-    for (std::size_t first = 0; first < n; first += chunk) {
-      const std::size_t count = std::min(chunk, n - first);
-      const std::size_t stride = roundUp(count, kLanes);
-      float* planes = dirs->host[0];
-      fillDirectionPlanes(samples, first, count, stride, planes);
-      for (int k = 0; k < 6; ++k) std::fill(planes + k * stride + count, planes + (k + 1) * stride, 0.0f);
-      void* p = q.enqueueMapBuffer(dirs->buffers[0], CL_FALSE, CL_MAP_WRITE, 0, 6 * stride * 4);
-      q.enqueueUnmapMemObject(dirs->buffers[0], p);
-      for (std::size_t m0 = 0; m0 < nm; m0 += materialsPerLaunch) {
-        const std::size_t mc = std::min(materialsPerLaunch, nm - m0);
-        int arg = 0;
-        kernel.setArg(arg++, dirs->buffers[0]);
-        kernel.setArg(arg++, cl_uint(stride));
-        kernel.setArg(arg++, b.materials);
-        kernel.setArg(arg++, cl_uint(firstMaterial + m0));
-        kernel.setArg(arg++, b.tableBuffer);
-        kernel.setArg(arg++, b.tableSize);
-        kernel.setArg(arg++, outs->buffers[0]);
-        q.enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(stride / std::size_t(b.shape.lanes), mc));
-        const std::size_t plane = stride * mc;
-        void* r = q.enqueueMapBuffer(outs->buffers[0], CL_TRUE, CL_MAP_READ, 0, 3 * plane * 4);
-        const float* out = outs->host[0];
-        for (std::size_t m = 0; m < mc; ++m) {
-          const float* pr = out + m * stride;
-          float* dst = rgb.data() + 3 * ((m0 + m) * n + first);
-          for (std::size_t i = 0; i < count; ++i) {
-            dst[3 * i] = pr[i];
-            dst[3 * i + 1] = pr[plane + i];
-            dst[3 * i + 2] = pr[2 * plane + i];
-          }
-        }
-        q.enqueueUnmapMemObject(outs->buffers[0], r);
-      }
-    }
-    q.finish();
-    givePlanes(std::move(dirs));
-    givePlanes(std::move(outs));
-  } catch (const cl::Error&) {
-    rethrowOpenCL("evaluating the material x direction grid");
-  }
+  std::vector<float> rgb(3 * samples.size() * materialCount);
+  evaluateGrid(materials, samples, firstMaterial, materialCount, rgb.data());
   return rgb;
+}
+
+void Evaluator::evaluateGrid(const std::vector<MaterialParams>& materials, const Samples& samples, float* rgb) {
+  evaluateGrid(materials, samples, 0, materials.size(), rgb);
+}
+
+// The row kernel over the samples' own arrays, which checks them on the device: the host words
+// the first bad row (checkSample) only when there is one.
+void Evaluator::evaluateGrid(const std::vector<MaterialParams>& materials, const Samples& samples,
+                             std::size_t firstMaterial, std::size_t materialCount, float* rgb) {
+  const std::size_t n = samples.size();
+  if (n == 0 || materialCount == 0) {
+    checkDirections(samples);
+    return;
+  }
+  const std::size_t bad =
+      evaluateGridRows(materials, Rows{samples.L.data(), samples.V.data(), nullptr, n}, rgb, false, firstMaterial,
+                       materialCount);
+  if (bad < n) {
+    checkSample(samples, bad);
+    throw Error(fmt::format("internal: sample {} reported as not finite", bad), 3);
+  }
+}
+
+// The row kernel on the samples' own arrays: no planes, and the indices and directions are
+// checked on the device; the host words the first bad sample only when there is one.
+void Evaluator::evaluate(const std::vector<MaterialParams>& materials, const Samples& samples, float* rgb) {
+  const std::size_t n = samples.size();
+  if (samples.material.size() != n)
+    throw Error(fmt::format("internal: {} material indices for {} samples", samples.material.size(), n), 3);
+  if (n == 0) return;
+  Rows rows{samples.L.data(), samples.V.data(), nullptr, n};
+  rows.index32 = samples.material.data();
+  const std::size_t bad = evaluateRows(materials, rows, rgb, false);
+  if (bad == n) return;
+  if (samples.material[bad] >= materials.size())
+    throw Error(fmt::format("sample {}: material index {} out of range ({} materials)", bad, samples.material[bad],
+                            materials.size()));
+  checkSample(samples, bad);
+  throw Error(fmt::format("internal: sample {} reported as bad", bad), 3);
 }
 
 }  // namespace brdfcl

@@ -125,12 +125,8 @@ StreamStats stream(const std::vector<MaterialParams>& materials, SampleStream& s
 
 StreamStats evaluateStream(Evaluator& evaluator, const std::vector<MaterialParams>& materials,
                            SampleStream& samples, ResultWriter& out, const StreamOptions& options) {
-  std::shared_ptr<SoaBatch> batch;
   return stream(materials, samples, out, options, [&] {
-    if (!options.grid)
-      batch = std::make_shared<SoaBatch>(evaluator, materials, std::min(options.chunk, evaluator.launchLimit()),
-                                         SoaBatch::Scratch{});
-    return Evaluate{[&](const Samples& dirs, float* rgb) { batch->evaluate(dirs, rgb); },
+    return Evaluate{[&](const Samples& dirs, float* rgb) { evaluator.evaluate(materials, dirs, rgb); },
                     [&](const Samples& dirs, std::size_t m0, std::size_t mc) {
                       return evaluator.evaluateGrid(materials, dirs, m0, mc);
                     }};

@@ -1,0 +1,104 @@
+/* Interleaved (N, 3) rows (numpy's layout: x y z x y z ...) to and from lanes, and the samples
+   readers' direction normalization done on the device, so that the batch kernels can read the
+   caller's arrays and write its result array where they lie. */
+#ifndef BRDFCL_ROWS_H
+#define BRDFCL_ROWS_H
+
+#include "common/lanes.h"
+
+#if BRDFCL_W == 1
+#define ANYW(x) (x)
+#define ROWS_LOAD_BODY                      \
+  vec3w v = {p[0], p[1], p[2]};             \
+  return v;
+#define ROWS_STORE_BODY p[0] = v.r, p[1] = v.g, p[2] = v.b;
+#else
+#define ANYW(x) any(x)
+/* W rows are 3 consecutive vectors a b c; lane k of component comp is element 3k + comp of
+   them. Two constant shuffles pick it: the lanes lying in a and b first, then those in c. */
+#define ROWS_LANES4(F, a) F(a, 0), F(a, 1), F(a, 2), F(a, 3)
+#define ROWS_LANES8(F, a) ROWS_LANES4(F, a), F(a, 4), F(a, 5), F(a, 6), F(a, 7)
+#define ROWS_LANES16(F, a) \
+  ROWS_LANES8(F, a), F(a, 8), F(a, 9), F(a, 10), F(a, 11), F(a, 12), F(a, 13), F(a, 14), F(a, 15)
+#if BRDFCL_W == 4
+#define ROWS_LANES ROWS_LANES4
+#elif BRDFCL_W == 8
+#define ROWS_LANES ROWS_LANES8
+#else
+#define ROWS_LANES ROWS_LANES16
+#endif
+#define ROWS_LANE_INDEX(unused, k) (k)
+#define ROWS_IN_AB(comp, k) (3 * (k) + (comp) < 2 * BRDFCL_W ? 3 * (k) + (comp) : -1)
+#define ROWS_FROM_C(comp, k) (3 * (k) + (comp) < 2 * BRDFCL_W ? (k) : 3 * (k) + (comp) - BRDFCL_W)
+#define ROWS_COMPONENT(a, b, c, comp) \
+  __builtin_shufflevector(__builtin_shufflevector(a, b, ROWS_LANES(ROWS_IN_AB, comp)), c, ROWS_LANES(ROWS_FROM_C, comp))
+/* Storing is the inverse: element j = qW + p of output vector q is channel j % 3 of lane j / 3;
+   r and g are merged first, then b. */
+#define ROWS_J(q, p) ((q) * BRDFCL_W + (p))
+#define ROWS_RG(q, p) (ROWS_J(q, p) % 3 == 0 ? ROWS_J(q, p) / 3 : ROWS_J(q, p) % 3 == 1 ? BRDFCL_W + ROWS_J(q, p) / 3 : -1)
+#define ROWS_B(q, p) (ROWS_J(q, p) % 3 == 2 ? BRDFCL_W + ROWS_J(q, p) / 3 : (p))
+#define ROWS_INTERLEAVE(v, q) \
+  __builtin_shufflevector(__builtin_shufflevector(v.r, v.g, ROWS_LANES(ROWS_RG, q)), v.b, ROWS_LANES(ROWS_B, q))
+#define ROWS_LOAD_BODY                                                             \
+  realw a = VLOADW(0, p), b = VLOADW(1, p), c = VLOADW(2, p);                      \
+  vec3w v = {ROWS_COMPONENT(a, b, c, 0), ROWS_COMPONENT(a, b, c, 1), ROWS_COMPONENT(a, b, c, 2)}; \
+  return v;
+#define ROWS_STORE_BODY                 \
+  VSTOREW(ROWS_INTERLEAVE(v, 0), 0, p); \
+  VSTOREW(ROWS_INTERLEAVE(v, 1), 1, p); \
+  VSTOREW(ROWS_INTERLEAVE(v, 2), 2, p);
+#endif
+
+/* BRDFCL_W rows from p (3 * BRDFCL_W floats). OpenCL C 1.2 has no generic address space: the
+   private entry points serve the one partial group at the end of an array. */
+BRDF_FN vec3w rows_load(__global const float* p) { ROWS_LOAD_BODY }
+BRDF_FN vec3w rows_load_private(const float* p) { ROWS_LOAD_BODY }
+BRDF_FN void rows_store(rgbw v, __global float* p) { ROWS_STORE_BODY }
+BRDF_FN void rows_store_private(rgbw v, float* p) { ROWS_STORE_BODY }
+
+/* The first n < BRDFCL_W rows from p; the lanes past them read 0. */
+BRDF_FN vec3w rows_load_partial(__global const float* p, uint n) {
+  float tmp[3 * BRDFCL_W];
+  for (uint j = 0; j < 3 * BRDFCL_W; ++j) tmp[j] = j < 3 * n ? p[j] : 0.0f;
+  return rows_load_private(tmp);
+}
+
+BRDF_FN void rows_store_partial(rgbw v, __global float* p, uint n) {
+  float tmp[3 * BRDFCL_W];
+  rows_store_private(v, tmp);
+  for (uint j = 0; j < 3 * n; ++j) p[j] = tmp[j];
+}
+
+/* Normalizes d in place exactly as the samples readers do (host/src/io/directions.cpp,
+   normalizeDirection): x / sqrt((x*x + y*y) + z*z), every operation rounded to float (no
+   contraction), and a vector whose squared length leaves [2^-96, 2^96] first scaled by 2^-e,
+   e = ilogb of its largest component (exact: ldexp rounds once, as the host's double scalbn and
+   its conversion to float do). Returns the lanes that hold no direction (a component NaN or
+   infinite, or all zero); their d is undefined. */
+BRDF_FN intw rows_normalize(vec3w* d) {
+#pragma OPENCL FP_CONTRACT OFF
+  realw x = d->x, y = d->y, z = d->z;
+  realw s = (x * x + y * y) + z * z;
+  intw rescale = !((s >= 0x1p-96f) & (s <= 0x1p96f));
+  intw bad = rescale & 0;
+  if (ANYW(rescale)) {
+    realw m = fmax(fabs(x), fmax(fabs(y), fabs(z)));
+    bad = !(isfinite(x) & isfinite(y) & isfinite(z)) | (m == 0.0f);
+    intw e = select(ilogb(m), (intw)(0), bad);
+    intw scaled = rescale & !bad;
+    x = select(x, ldexp(x, -e), scaled);
+    y = select(y, ldexp(y, -e), scaled);
+    z = select(z, ldexp(z, -e), scaled);
+    s = (x * x + y * y) + z * z;
+  }
+  realw len = sqrt(s);
+  d->x = x / len;
+  d->y = y / len;
+  d->z = z / len;
+  return bad;
+}
+
+/* The lanes of d that hold a NaN or an infinity (directions given as unit vectors). */
+BRDF_FN intw rows_not_finite(vec3w d) { return !(isfinite(d.x) & isfinite(d.y) & isfinite(d.z)); }
+
+#endif
