@@ -5,8 +5,14 @@
 #include "brdf/material.h"
 #include "common/rows.h"
 
-/* One material per sample, gathered by index. Every plane is its own buffer, so callers can
-   hand over their arrays in place and a plane stays under the device's largest allocation. */
+#ifndef BRDFCL_ONE_MATERIAL
+#define BRDFCL_ONE_MATERIAL 0
+#endif
+
+/* One material per sample, gathered by index (read once for all lanes in a program built for one
+   material, BRDFCL_ONE_MATERIAL: a branch here instead costs the gathering kernel ~10 %). Every
+   plane is its own buffer, so callers can hand over their arrays in place and a plane stays
+   under the device's largest allocation. */
 __kernel void eval_samples(__global const float* restrict Lx, __global const float* restrict Ly,
                            __global const float* restrict Lz, __global const float* restrict Vx,
                            __global const float* restrict Vy, __global const float* restrict Vz,
@@ -18,7 +24,11 @@ __kernel void eval_samples(__global const float* restrict Lx, __global const flo
   uint i = get_global_id(0);
   vec3w L = {VLOADW(i, Lx), VLOADW(i, Ly), VLOADW(i, Lz)};
   vec3w V = {VLOADW(i, Vx), VLOADW(i, Vy), VLOADW(i, Vz)};
+#if BRDFCL_ONE_MATERIAL
+  material_lanes m = material_splat(materials);
+#else
   material_lanes m = material_gather(materials, VLOADW(i, material_index));
+#endif
   rgbw f = brdf_material(m, L, V, sheen_e, sheen_e_size);
   VSTOREW(f.r, i, out_r);
   VSTOREW(f.g, i, out_g);
@@ -35,15 +45,17 @@ BRDF_FN void report_bad_rows(intw bad, uint first, __global uint* bad_row) {
   atomic_min(bad_row, first + k);
 }
 
-/* The lanes holding one of the first n rows of the group (the rest lie past the array's end). */
-BRDF_FN intw lanes_before(uint n) {
+/* 0, 1, ..., BRDFCL_W - 1: each lane's row within its group. */
+BRDF_FN intw lane_index(void) {
 #if BRDFCL_W == 1
-  return n > 0;
+  return 0;
 #else
-  intw lane = (intw)(ROWS_LANES(ROWS_LANE_INDEX, 0));
-  return lane < (int)n;
+  return (intw)(ROWS_LANES(ROWS_LANE_INDEX, 0));
 #endif
 }
+
+/* The lanes holding one of the first n rows of the group (the rest lie past the array's end). */
+BRDF_FN intw lanes_before(uint n) { return lane_index() < (int)n; }
 
 /* The material indices of the first n rows at p (the lanes past them read 0). */
 #define INDICES_BODY(T)                                          \
@@ -81,7 +93,11 @@ __kernel void eval_rows(__global const float* restrict L, uint L_at, __global co
                           : load_indices_uint(index + index_at + first, n);
     intw inside = CONVERT_INTW((k >= 0) & (k < (long)material_count));
     bad |= !inside;
+#if BRDFCL_ONE_MATERIAL
+    m = material_splat(materials);
+#else
     m = material_gather(materials, AS_UINTW(select((intw)(0), CONVERT_INTW(k), inside)));
+#endif
   } else {
     m = material_splat(materials);
   }

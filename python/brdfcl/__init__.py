@@ -104,6 +104,24 @@ def _directions(a: Any, name: str) -> np.ndarray:
     return np.ascontiguousarray(arr)
 
 
+def _output(out: Optional[np.ndarray], shape: Tuple[int, ...], L: np.ndarray, V: np.ndarray) -> np.ndarray:
+    """A fresh float32 result array of `shape`, or the caller's `out` once it is checked to be one
+    that does not overlap the directions (the device reads them while it writes out)."""
+    if out is None:
+        return np.empty(shape, dtype=np.float32)
+    if not isinstance(out, np.ndarray):
+        raise Error(f"out must be a numpy array, got {type(out).__name__}")
+    if out.dtype != np.float32 or not out.flags.c_contiguous or not out.flags.writeable:
+        raise Error(f"out must be a writeable C-contiguous float32 array, got {out.dtype} "
+                    f"({'C-contiguous' if out.flags.c_contiguous else 'not C-contiguous'}"
+                    f"{'' if out.flags.writeable else ', read-only'})")
+    if out.shape != tuple(shape):
+        raise Error(f"out must have shape {tuple(shape)}, got {out.shape}")
+    if np.may_share_memory(out, L) or np.may_share_memory(out, V):
+        raise Error("out must not overlap L or V; pass a separate array")
+    return out
+
+
 def _index(material_index: Any, n: int, count: int) -> Optional[np.ndarray]:
     if material_index is None:
         if count != 1:
@@ -151,7 +169,8 @@ class Evaluator:
 
     def evaluate(self, materials: MaterialsLike, L: Any, V: Any, material_index: Any = None, *,
                  lobe: str = "all", sheen_visibility: str = "charlie", sheen_distribution: str = "charlie",
-                 sheen_scaling: str = "min", profile: str = "spec", strict: bool = False) -> np.ndarray:
+                 sheen_scaling: str = "min", profile: str = "spec", strict: bool = False,
+                 out: Optional[np.ndarray] = None) -> np.ndarray:
         """f(L, V) per sample: float32 (N, 3) rgb in 1/sr, no cosine. See brdfcl.evaluate."""
         opts = _core.eval_options(lobe, sheen_visibility, sheen_distribution, sheen_scaling, profile)
         m = _materials(materials, strict)
@@ -161,20 +180,21 @@ class Evaluator:
         idx = _index(material_index, Ld.shape[0], len(m))
         if idx is not None and idx.shape[0] != Ld.shape[0]:
             raise Error(f"material_index must have one entry per sample: {idx.shape[0]} for {Ld.shape[0]} samples")
-        out = np.empty((Ld.shape[0], 3), dtype=np.float32)
+        out = _output(out, (Ld.shape[0], 3), Ld, Vd)
         self._device.evaluate(m, Ld, Vd, idx, out, opts)
         return out
 
     def evaluate_grid(self, materials: MaterialsLike, L: Any, V: Any, *, lobe: str = "all",
                       sheen_visibility: str = "charlie", sheen_distribution: str = "charlie",
-                      sheen_scaling: str = "min", profile: str = "spec", strict: bool = False) -> np.ndarray:
+                      sheen_scaling: str = "min", profile: str = "spec", strict: bool = False,
+                      out: Optional[np.ndarray] = None) -> np.ndarray:
         """Every material x every direction pair: float32 (M, N, 3). See brdfcl.evaluate_grid."""
         opts = _core.eval_options(lobe, sheen_visibility, sheen_distribution, sheen_scaling, profile)
         m = _materials(materials, strict)
         Ld, Vd = _directions(L, "L"), _directions(V, "V")
         if Ld.shape[0] != Vd.shape[0]:
             raise Error(f"L and V must have the same number of rows, got {Ld.shape[0]} and {Vd.shape[0]}")
-        out = np.empty((len(m), Ld.shape[0], 3), dtype=np.float32)
+        out = _output(out, (len(m), Ld.shape[0], 3), Ld, Vd)
         self._device.evaluate_grid(m, Ld, Vd, out, opts)
         return out
 
@@ -332,7 +352,7 @@ def devices() -> List[Dict[str, Any]]:
 def evaluate(materials: MaterialsLike, L: Any, V: Any, material_index: Any = None, *, lobe: str = "all",
              sheen_visibility: str = "charlie", sheen_distribution: str = "charlie", sheen_scaling: str = "min",
              profile: str = "spec", strict: bool = False,
-             device: Union[None, int, str, Evaluator] = None) -> np.ndarray:
+             device: Union[None, int, str, Evaluator] = None, out: Optional[np.ndarray] = None) -> np.ndarray:
     """f(L, V) of glTF materials per sample: float32 array (N, 3), rgb in 1/sr, without the cosine.
 
     Conventions: shading frame N = +Z, T = +X, B = +Y; L (N, 3) points towards the light, V (N, 3)
@@ -351,24 +371,28 @@ def evaluate(materials: MaterialsLike, L: Any, V: Any, material_index: Any = Non
       sheen_scaling: min|view|none (spec profile only).
     device: None (the default device, $BRDFCL_DEVICE then 0), an index, a name substring or an
       Evaluator. Raises brdfcl.Error on a bad material, direction or option, naming it.
+    out: an existing C-contiguous float32 array of shape (N, 3) to write f into and return, as
+      numpy's out=: a loop that reuses it skips the page faults of a fresh result array.
     """
     return _evaluator(device).evaluate(materials, L, V, material_index, lobe=lobe, sheen_visibility=sheen_visibility,
                                        sheen_distribution=sheen_distribution, sheen_scaling=sheen_scaling,
-                                       profile=profile, strict=strict)
+                                       profile=profile, strict=strict, out=out)
 
 
 def evaluate_grid(materials: MaterialsLike, L: Any, V: Any, *, lobe: str = "all", sheen_visibility: str = "charlie",
                   sheen_distribution: str = "charlie", sheen_scaling: str = "min", profile: str = "spec",
-                  strict: bool = False, device: Union[None, int, str, Evaluator] = None) -> np.ndarray:
+                  strict: bool = False, device: Union[None, int, str, Evaluator] = None,
+                  out: Optional[np.ndarray] = None) -> np.ndarray:
     """f(L, V) of every material at every direction pair: float32 array (M, N, 3), rgb in 1/sr,
     without the cosine; out[m, i] is material m at pair i (`brdfcl eval --grid`, bit for bit).
 
     Conventions and arguments as brdfcl.evaluate (N = +Z, L towards the light, V towards the
-    viewer, f without the cosine); there is no material_index.
+    viewer, f without the cosine); there is no material_index. out: an existing C-contiguous
+    float32 (M, N, 3) array to fill and return.
     """
     return _evaluator(device).evaluate_grid(materials, L, V, lobe=lobe, sheen_visibility=sheen_visibility,
                                             sheen_distribution=sheen_distribution, sheen_scaling=sheen_scaling,
-                                            profile=profile, strict=strict)
+                                            profile=profile, strict=strict, out=out)
 
 
 def albedo(material: MaterialsLike, cos_theta_v: Any, *, sheen_visibility: str = "charlie",

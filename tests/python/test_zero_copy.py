@@ -1,6 +1,6 @@
 # Zero copy: evaluating 10M float32 samples must not copy L or V (peak RSS growth, measured in a
 # subprocess, stays well below the 240 MB two copies would cost), and its samples/s is compared
-# with `brdfcl bench --pairs` on the same pairs (kernel only, in memory).
+# with `brdfcl bench --pairs` on the same pairs and material (kernel only, in memory).
 import json
 import subprocess
 import sys
@@ -32,15 +32,13 @@ SCRIPT = textwrap.dedent("""
     before = hwm()
     out = brdfcl.evaluate(materials, L, V, idx)
     growth = hwm() - before
-    # Timed on a repeat call, as a user's loop runs: the batch planes come from the evaluator's
-    # pool, and only the new result array is fresh memory.
-    del out
-    t0 = time.perf_counter()
-    out = brdfcl.evaluate(materials, L, V, idx)
-    seconds = time.perf_counter() - t0
+    # A repeat call into the same array (out=) writes the same bits.
+    again = np.empty_like(out)
+    brdfcl.evaluate(materials, L, V, idx, out=again)
+    assert np.array_equal(again.view(np.uint32), out.view(np.uint32))
     planes = np.concatenate([L.T, V.T]).astype("<f4")
     planes[:, :4194304].tofile(sys.argv[3])
-    print(json.dumps({"growth": growth, "out": out.nbytes, "seconds": seconds, "n": n}))
+    print(json.dumps({"growth": growth, "out": out.nbytes, "n": n}))
 """)
 
 
@@ -57,27 +55,64 @@ def test_no_copy_of_L_or_V(measured):
     m, _ = measured
     extra = m["growth"] - m["out"]  # the (N, 3) result itself must exist
     print(f"\n10M samples: peak RSS growth {m['growth'] / 2**20:.0f} MiB, of which the result "
-          f"{m['out'] / 2**20:.0f} MiB; {m['n'] / m['seconds'] / 1e6:.2f} M samples/s")
+          f"{m['out'] / 2**20:.0f} MiB")
     # Two float32 copies of L and V would add 240 MB; the batch planes take ~40 MB.
     assert extra < 100e6, f"{extra / 2**20:.0f} MiB beyond the result: L or V was copied"
 
 
-def test_throughput_vs_bench(measured, cli):
-    """Python's samples/s against `brdfcl bench --pairs` (kernel only, in memory, its own random
-    materials) on the first 4M of the same pairs.
+# Times brdfcl.evaluate on the pairs file of `brdfcl bench --pairs` with the bench's own material:
+# the median of 5 repeat calls into one result array (out=), as a user's loop runs them.
+TIMING = textwrap.dedent("""
+    import json, sys, time
+    import numpy as np
+    import brdfcl
+    planes = np.fromfile(sys.argv[1], dtype="<f4").reshape(6, -1)
+    L, V = np.ascontiguousarray(planes[:3].T), np.ascontiguousarray(planes[3:].T)
+    material = json.loads(sys.argv[2])
+    out = np.empty((L.shape[0], 3), dtype=np.float32)
+    brdfcl.evaluate(material, L[:4096], V[:4096])  # programs built, tables baked
+    times = []
+    for _ in range(5):
+        t0 = time.perf_counter()
+        brdfcl.evaluate(material, L, V, out=out)
+        times.append(time.perf_counter() - t0)
+    print(json.dumps({"n": L.shape[0], "seconds": sorted(times)[2]}))
+""")
 
-    NOT MET: the issue asks for within 10 %; measured on PoCL, 2 cores, on a repeat call: ~0.45
-    (57 vs 134 M samples/s). Python pays what `brdfcl eval` pays and the bench does not: each
-    row checked and normalized (vectorized, io/directions.hpp) into the SoA planes and the
-    results copied back to (N, 3) rows, ~3x the kernel's own memory traffic, on the same two
-    cores the kernel uses. The 10 % bound is asserted only with BRDFCL_STRICT_PERF=1 (it fails
-    today); otherwise the ratio is printed and must reach 0.2, a guard against regressions.
-    README.md, "Python", and bench/README.md ("The library and files") have the figures."""
+
+def gltf_material(m):
+    """A glTF material dict from the parameters `brdfcl bench --json` prints as material0."""
+    return {"pbrMetallicRoughness": {"baseColorFactor": m["base_color"] + [1.0], "metallicFactor": m["metallic"],
+                                     "roughnessFactor": m["roughness"]},
+            "extensions": {
+                "KHR_materials_sheen": {"sheenColorFactor": m["sheen_color"],
+                                        "sheenRoughnessFactor": m["sheen_roughness"]},
+                "KHR_materials_clearcoat": {"clearcoatFactor": m["clearcoat"],
+                                            "clearcoatRoughnessFactor": m["clearcoat_roughness"]},
+                "KHR_materials_anisotropy": {"anisotropyStrength": m["anisotropy_strength"],
+                                             "anisotropyRotation": m["anisotropy_rotation"]}}}
+
+
+def test_throughput_vs_bench(measured, cli):
+    """Python's samples/s against `brdfcl bench --pairs` (the kernel alone on pre-filled planes,
+    in memory) on the same 4M pairs and the same material (the bench's one random material, all
+    layers), both medians of repeated runs.
+
+    The issue asks for within 10 %. Measured on PoCL, 2 cores: Python is faster, 1.2 to 1.4 (the
+    row kernel reads L and V and writes the result where they lie, normalizing on the device, and
+    a material without an index array is read once, not gathered per lane; README.md, "Python").
+    On 256 materials through the library against the kernel on the same ones (BM_InMemory/all in
+    bench/README.md) the ratio is 0.92 to 0.95. Timings on a shared machine wander, so the bound is
+    asserted with BRDFCL_STRICT_PERF=1; otherwise the ratio must reach 0.5, a guard against the
+    copies of before (0.2 to 0.45) coming back."""
     import os
-    m, pairs = measured
-    bench = json.loads(cli("bench", "--pairs", pairs, "--runs", 3, "--json"))
-    key = next(k for k in bench if "samples_per_second" in k)
-    ratio = (m["n"] / m["seconds"]) / bench[key]
-    print(f"\npython {m['n'] / m['seconds'] / 1e6:.2f} M samples/s, brdfcl bench {bench[key] / 1e6:.2f} M samples/s,"
-          f" ratio {ratio:.2f}")
-    assert ratio >= (0.9 if os.environ.get("BRDFCL_STRICT_PERF") == "1" else 0.2)
+    _, pairs = measured
+    bench = json.loads(cli("bench", "--pairs", pairs, "--materials", 1, "--runs", 5, "--json"))
+    r = subprocess.run([sys.executable, "-c", TIMING, str(pairs), json.dumps(gltf_material(bench["material0"]))],
+                       capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
+    m = json.loads(r.stdout.strip().splitlines()[-1])
+    ratio = (m["n"] / m["seconds"]) / bench["samples_per_second"]
+    print(f"\npython {m['n'] / m['seconds'] / 1e6:.2f} M samples/s into out=, brdfcl bench "
+          f"{bench['samples_per_second'] / 1e6:.2f} M samples/s, ratio {ratio:.2f}")
+    assert ratio >= (0.9 if os.environ.get("BRDFCL_STRICT_PERF") == "1" else 0.5)
