@@ -1,5 +1,9 @@
 // Runtime tests: device listing, selection errors, include expansion and the program cache.
 #include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <string>
 
 #include "brdfcl/error.hpp"
 #include "brdfcl/runtime.hpp"
@@ -12,6 +16,28 @@ TEST(Runtime, ListsAtLeastOneDevice) {
   EXPECT_FALSE(devices[0].name.empty());
   EXPECT_GT(devices[0].computeUnits, 0u);
   EXPECT_GT(devices[0].maxAlloc, 0u);
+}
+
+// Run in a child by the test below: the value PoCL sees once brdfcl has made its first OpenCL call.
+TEST(Runtime, DISABLED_PoclAffinitySeenByPocl) {
+  listDevices();
+  const char* want = std::getenv("BRDFCL_EXPECT_POCL_AFFINITY");
+  const char* got = std::getenv("POCL_AFFINITY");
+  ASSERT_NE(want, nullptr);
+  ASSERT_NE(got, nullptr);
+  EXPECT_STREQ(got, want);
+}
+
+// PoCL's worker threads are pinned one a core (runtime.cpp, pinPoclWorkers), unless the user set
+// POCL_AFFINITY, whose value is then kept.
+TEST(Runtime, PinsPoclWorkersUnlessTheUserChose) {
+  const std::string child =
+      " /proc/" + std::to_string(::getpid()) + "/exe --gtest_also_run_disabled_tests"
+      " --gtest_filter=Runtime.DISABLED_PoclAffinitySeenByPocl > /dev/null 2>&1";
+  EXPECT_EQ(std::system(("env -u POCL_AFFINITY BRDFCL_EXPECT_POCL_AFFINITY=1" + child).c_str()), 0);
+  EXPECT_EQ(std::system(("env POCL_AFFINITY=0 BRDFCL_EXPECT_POCL_AFFINITY=0" + child).c_str()), 0);
+  EXPECT_NE(std::system(("env POCL_AFFINITY=0 BRDFCL_EXPECT_POCL_AFFINITY=1" + child).c_str()), 0)
+      << "the child check cannot fail";
 }
 
 TEST(Runtime, UnknownDeviceNameIsAnError) {

@@ -3,6 +3,7 @@
 #include "brdfcl/runtime.hpp"
 
 #include <cstdlib>
+#include <mutex>
 #include <set>
 #include <sstream>
 
@@ -49,7 +50,17 @@ namespace {
 
 constexpr const char* kNoPlatform = "no OpenCL platform found; install pocl-opencl-icd (make deps)";
 
+// PoCL's CPU device runs one worker thread a core, unpinned by default. Linux then now and then
+// leaves two of them on one core for a whole launch, which runs at half speed: launches of the
+// same kernel took either t or 2t (bench/README.md, "Run-to-run spread"). Pinned, they do not.
+// Set before PoCL reads its environment (the first OpenCL call), and never over the user's value.
+void pinPoclWorkers() {
+  static std::once_flag once;
+  std::call_once(once, [] { ::setenv("POCL_AFFINITY", "1", 0); });
+}
+
 std::vector<cl::Platform> platformsOrThrow() {
+  pinPoclWorkers();
   std::vector<cl::Platform> platforms;
   try {
     cl::Platform::get(&platforms);
