@@ -86,11 +86,12 @@ void BM_EvalGrid(benchmark::State& state) {
 
 // The library's in-memory paths on the kernel's own workload (the same pairs and materials as
 // BM_Eval/<lobe>/<n>, `materials` random ones): what the Python module calls. `arrays` is
-// evaluateArrays on float32 (N, 3) rows, checked and normalized, into a reused output;
+// evaluateArrays on float32 (N, 3) rows, checked and normalized, into a reused output; `table`
+// is Evaluator::evaluateTableRows on the same samples as a float32 NPY's (N, 7) rows;
 // `grid` is Evaluator::evaluateGrid of one material into a reused output, `grid-fresh` the same
 // returning a fresh vector (whose pages every call faults in); `kernel` runs the
 // batch alone, so each row's items/s divided by its kernel row's is the fraction of kernel speed.
-enum class InMemory { Kernel, Arrays, Grid, GridFresh };
+enum class InMemory { Kernel, Arrays, Table, Grid, GridFresh };
 void BM_InMemory(benchmark::State& state, std::string lobe, InMemory path) {
   const std::size_t n = std::size_t(state.range(0)), materials = std::size_t(state.range(1));
   auto b = std::make_unique<bench::Bench>(runtime(), lobe, n, 1, materials);
@@ -105,6 +106,11 @@ void BM_InMemory(benchmark::State& state, std::string lobe, InMemory path) {
     }
     index[i] = batch.materialIndexPlane()[i];
   }
+  std::vector<float> table(7 * n);  // a samples NPY's rows: material, L, V
+  for (std::size_t i = 0; i < n; ++i) {
+    table[7 * i] = float(index[i]);
+    for (int c = 0; c < 3; ++c) table[7 * i + 1 + c] = L[3 * i + c], table[7 * i + 4 + c] = V[3 * i + c];
+  }
   ArraySamples a;
   a.L.data = L.data();
   a.V.data = V.data();
@@ -116,6 +122,7 @@ void BM_InMemory(benchmark::State& state, std::string lobe, InMemory path) {
     switch (path) {
       case InMemory::Kernel: b->runKernel(); break;
       case InMemory::Arrays: evaluateArrays(b->evaluator(), mats, a, rgb.data()); break;
+      case InMemory::Table: b->evaluator().evaluateTableRows(mats, table.data(), n, rgb.data()); break;
       case InMemory::Grid: b->evaluator().evaluateGrid(mats, s, rgb.data()); break;
       case InMemory::GridFresh: benchmark::DoNotOptimize(b->evaluator().evaluateGrid(mats, s)); break;
     }
@@ -215,6 +222,7 @@ void registerAll() {
   // Interleaved, so that each library row sits next to its kernel row in one run.
   for (const auto& [lobe, materials] : std::vector<std::pair<std::string, int>>{{"all", 256}, {"specular", 1}}) {
     for (auto [name, path] : {std::pair{"kernel", InMemory::Kernel}, std::pair{"arrays", InMemory::Arrays},
+                              std::pair{"table", InMemory::Table},
                               std::pair{"grid", InMemory::Grid}, std::pair{"grid-fresh", InMemory::GridFresh}}) {
       if ((path == InMemory::Grid || path == InMemory::GridFresh) && materials != 1) continue;
       benchmark::RegisterBenchmark(("BM_InMemory/" + lobe + "/" + name).c_str(), BM_InMemory, lobe, path)

@@ -137,3 +137,40 @@ __kernel void eval_grid_rows(__global const float* restrict L, uint L_at, __glob
   else
     rows_store_partial(f, out, n);
 }
+
+/* A samples file's rows as they lie in memory (a float32 C-order NPY of shape (count, 7)): the
+   material index (a float that must hold an integer in [0, material_count)), then Lx Ly Lz Vx Vy
+   Vz, read and checked as the samples readers read them, normalized as eval_rows does it; f is
+   written as (count, 3) rows. */
+__kernel void eval_table_rows(__global const float* restrict rows, uint rows_at, uint material_count, uint count,
+                              __global const brdfcl_material* restrict materials,
+                              __global const float* restrict sheen_e, int sheen_e_size, __global float* restrict out,
+                              uint out_at, __global uint* restrict bad_row) {
+  uint first = get_global_id(0) * BRDFCL_W;
+  if (first >= count) return;
+  uint n = min(count - first, (uint)BRDFCL_W);
+  __global const float* p = rows + rows_at + 7 * (ulong)first;
+  out += out_at + 3 * (ulong)first;
+  realw k;
+  vec3w l, v;
+  if (n == BRDFCL_W)
+    table_load(p, &k, &l, &v);
+  else
+    table_load_partial(p, n, &k, &l, &v);
+  intw bad = rows_normalize(&l) | rows_normalize(&v);
+  /* The readers' test: an index is good when it is an integer in [0, min(material_count, 2^31)). */
+  realw limit = (realw)((float)min(material_count, 0x80000000u));
+  intw inside = (k >= 0.0f) & (k < limit) & (trunc(k) == k);
+  bad |= !inside;
+#if BRDFCL_ONE_MATERIAL
+  material_lanes m = material_splat(materials);
+#else
+  material_lanes m = material_gather(materials, AS_UINTW(select((intw)(0), CONVERT_INTW(k), inside)));
+#endif
+  report_bad_rows(bad & lanes_before(n), first, bad_row);
+  rgbw f = brdf_material(m, l, v, sheen_e, sheen_e_size);
+  if (n == BRDFCL_W)
+    rows_store(f, out);
+  else
+    rows_store_partial(f, out, n);
+}

@@ -69,6 +69,59 @@ BRDF_FN void rows_store_partial(rgbw v, __global float* p, uint n) {
   for (uint j = 0; j < 3 * n; ++j) p[j] = tmp[j];
 }
 
+/* The same for rows of 7 floats, a samples file's (material, Lx Ly Lz Vx Vy Vz): lane k of column c
+   is element 7k + c of 7 consecutive vectors v[0..6], which a tree of constant shuffles gathers
+   (the pairs of vectors it lies in, then the halves). */
+#if BRDFCL_W > 1
+#define TABLE_STRIDE 7
+#define TABLE_E(c, k) (TABLE_STRIDE * (k) + (c))
+#define TABLE_SRC(c, k) (TABLE_E(c, k) / BRDFCL_W)
+#define TABLE_ESC(...) __VA_ARGS__
+#define TABLE_PAIR_(k, c, p) (TABLE_SRC(c, k) / 2 == (p) ? TABLE_E(c, k) - 2 * (p) * BRDFCL_W : -1)
+#define TABLE_PAIR_X(...) TABLE_PAIR_(__VA_ARGS__)
+#define TABLE_PAIR(a, k) TABLE_PAIR_X(k, TABLE_ESC a)
+#define TABLE_LOW_(k, c) (TABLE_SRC(c, k) < 2 ? (k) : TABLE_SRC(c, k) < 4 ? BRDFCL_W + (k) : -1)
+#define TABLE_LOW_X(...) TABLE_LOW_(__VA_ARGS__)
+#define TABLE_LOW(a, k) TABLE_LOW_X(k, TABLE_ESC a)
+#define TABLE_HIGH_(k, c) (TABLE_SRC(c, k) < 4 ? -1 : TABLE_SRC(c, k) < 6 ? (k) : BRDFCL_W + (k))
+#define TABLE_HIGH_X(...) TABLE_HIGH_(__VA_ARGS__)
+#define TABLE_HIGH(a, k) TABLE_HIGH_X(k, TABLE_ESC a)
+#define TABLE_HALF_(k, c) (TABLE_SRC(c, k) < 4 ? (k) : BRDFCL_W + (k))
+#define TABLE_HALF_X(...) TABLE_HALF_(__VA_ARGS__)
+#define TABLE_HALF(a, k) TABLE_HALF_X(k, TABLE_ESC a)
+#define TABLE_COLUMN(v, c)                                                                                   \
+  __builtin_shufflevector(                                                                                   \
+      __builtin_shufflevector(__builtin_shufflevector(v[0], v[1], ROWS_LANES(TABLE_PAIR, (c, 0))),           \
+                              __builtin_shufflevector(v[2], v[3], ROWS_LANES(TABLE_PAIR, (c, 1))),           \
+                              ROWS_LANES(TABLE_LOW, (c))),                                                   \
+      __builtin_shufflevector(__builtin_shufflevector(v[4], v[5], ROWS_LANES(TABLE_PAIR, (c, 2))),           \
+                              __builtin_shufflevector(v[6], v[6], ROWS_LANES(TABLE_PAIR, (c, 3))),           \
+                              ROWS_LANES(TABLE_HIGH, (c))),                                                  \
+      ROWS_LANES(TABLE_HALF, (c)))
+#define TABLE_LOAD_BODY                                                                \
+  realw v[7];                                                                          \
+  for (int q = 0; q < 7; ++q) v[q] = VLOADW(q, p);                                     \
+  *material = TABLE_COLUMN(v, 0);                                                      \
+  L->x = TABLE_COLUMN(v, 1), L->y = TABLE_COLUMN(v, 2), L->z = TABLE_COLUMN(v, 3);     \
+  V->x = TABLE_COLUMN(v, 4), V->y = TABLE_COLUMN(v, 5), V->z = TABLE_COLUMN(v, 6);
+#else
+#define TABLE_LOAD_BODY                                            \
+  *material = p[0];                                                \
+  L->x = p[1], L->y = p[2], L->z = p[3];                           \
+  V->x = p[4], V->y = p[5], V->z = p[6];
+#endif
+
+/* BRDFCL_W rows of 7 floats from p: the material column, L and V. */
+BRDF_FN void table_load(__global const float* p, realw* material, vec3w* L, vec3w* V) { TABLE_LOAD_BODY }
+BRDF_FN void table_load_private(const float* p, realw* material, vec3w* L, vec3w* V) { TABLE_LOAD_BODY }
+
+/* The first n < BRDFCL_W rows of 7 floats from p; the lanes past them read 0. */
+BRDF_FN void table_load_partial(__global const float* p, uint n, realw* material, vec3w* L, vec3w* V) {
+  float tmp[7 * BRDFCL_W];
+  for (uint j = 0; j < 7 * BRDFCL_W; ++j) tmp[j] = j < 7 * n ? p[j] : 0.0f;
+  table_load_private(tmp, material, L, V);
+}
+
 /* Normalizes d in place exactly as the samples readers do (host/src/io/directions.cpp,
    normalizeDirection): x / sqrt((x*x + y*y) + z*z), every operation rounded to float (no
    contraction), and a vector whose squared length leaves [2^-96, 2^96] first scaled by 2^-e,

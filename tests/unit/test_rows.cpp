@@ -9,6 +9,7 @@
 #include <cstring>
 #include <random>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "brdfcl/arrays.hpp"
@@ -122,6 +123,41 @@ TEST_P(RowsAtWidth, GridBlocksEqualPerSampleEvaluation) {
     std::vector<float> rows(3 * n);
     evaluateArrays(ev, materials, arrays(L.data(), V.data(), index.data(), n), rows.data());
     expectSameBits(grid.data() + 3 * m * n, rows.data(), 3 * n, "grid block of material " + std::to_string(m));
+  }
+}
+
+// A samples file's (N, 7) rows (material, L, V) give the bits of the same samples as arrays, and
+// their bad rows (a fractional or out-of-range index, a zero direction) are found at their row.
+TEST_P(RowsAtWidth, TableRowsGiveTheArraysBits) {
+  ForcedLanes forced(GetParam());
+  std::mt19937_64 rng(seed() + 71 + std::uint64_t(GetParam()));
+  std::vector<MaterialParams> materials;
+  for (int m = 0; m < 3; ++m) materials.push_back(randomMaterial(rng));
+  Evaluator ev(runtime(), EvalOptions{});
+  for (std::size_t n : {std::size_t(1), std::size_t(15), std::size_t(16), std::size_t(45), std::size_t(5003)}) {
+    const auto L = rawRows(rng, n), V = rawRows(rng, n);
+    std::vector<std::int64_t> index(n);
+    std::vector<float> table(7 * n);
+    for (std::size_t i = 0; i < n; ++i) {
+      index[i] = std::int64_t(rng() % materials.size());
+      table[7 * i] = float(index[i]);
+      for (int c = 0; c < 3; ++c) table[7 * i + 1 + c] = L[3 * i + c], table[7 * i + 4 + c] = V[3 * i + c];
+    }
+    std::vector<float> want(3 * n), got(3 * n);
+    evaluateArrays(ev, materials, arrays(L.data(), V.data(), index.data(), n), want.data());
+    ASSERT_EQ(ev.evaluateTableRows(materials, table.data(), n, got.data()), n);
+    expectSameBits(got.data(), want.data(), 3 * n, std::to_string(n) + " table rows, W = " + std::to_string(GetParam()));
+    if (n < 45) continue;
+    for (const auto& [row, column, value] : {std::tuple{n - 1, 0, 1.5f}, std::tuple{n / 2, 0, 3.0f},
+                                             std::tuple{std::size_t(17), 0, -0.0f - 1.0f}, std::tuple{std::size_t(3), 4, NAN}}) {
+      auto bad = table;
+      bad[7 * row + std::size_t(column)] = value;
+      EXPECT_EQ(ev.evaluateTableRows(materials, bad.data(), n, got.data()), row) << "column " << column;
+      EXPECT_EQ(ev.evaluateTableRows(materials, bad.data(), n, got.data(), 32), row) << "in launches of 32";
+    }
+    auto zero = table;
+    std::fill_n(zero.begin() + 7 * 40 + 1, 3, 0.0f);
+    EXPECT_EQ(ev.evaluateTableRows(materials, zero.data(), n, got.data()), 40u);
   }
 }
 

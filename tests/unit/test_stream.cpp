@@ -15,6 +15,7 @@
 #include <random>
 #include <sstream>
 #include <string>
+#include <tuple>
 #include <thread>
 #include <vector>
 
@@ -429,6 +430,60 @@ TEST(Stream, ChunkedEvaluationEqualsOneShot) {
   writeFile(tiny, npyFile(tinyRows, 7, true, false));
   writeResults(dir.path("tiny-one.npy"), ev.evaluate(materials, readSamples(tiny, materials.size(), false)));
   EXPECT_EQ(streamToFile(ev, materials, tiny, dir.path("tiny-streamed.npy"), 1, false), slurp(dir.path("tiny-one.npy")));
+}
+
+// A float32 C-order NPY goes to the device as the file holds it (SampleStream::nextRows,
+// Evaluator::evaluateTableRows): its rows are the file's, and a bad row, found on the device, is
+// worded as the host reader words it, in whichever chunk it lies, with later bad rows ignored.
+TEST(Stream, RawNpyRowsAreWordedAsTheReaderWordsThem) {
+  ScratchDir dir("stream");
+  const auto materials = someMaterials(6, 8);
+  const auto rows = randomRows(3000, true, 6, 31);
+  Evaluator ev(runtime(), EvalOptions{});
+  {
+    const std::string in = dir.path("raw.npy");
+    writeFile(in, npyFile(rows, 7, true, false));
+    SampleStream stream(in, materials.size(), false);
+    ASSERT_TRUE(stream.hasRawRows());
+    SampleStream::RawRows raw;
+    std::size_t seen = 0;
+    while (stream.nextRows(1100, raw)) {
+      ASSERT_EQ(raw.firstRow, seen);
+      for (std::size_t k = 0; k < 7 * raw.count; ++k)
+        ASSERT_EQ(raw.data[k], float(rows[7 * seen + k])) << "row " << seen + k / 7;
+      seen += raw.count;
+    }
+    EXPECT_EQ(seen, 3000u);
+  }
+  // Not served raw: float64, Fortran order, and files read without a material count (the grid's).
+  for (const auto& [name, file, count] : {std::tuple{"f64.npy", npyFile(rows, 7, false, false), materials.size()},
+                                          std::tuple{"fortran.npy", npyFile(rows, 7, true, true), materials.size()},
+                                          std::tuple{"grid.npy", npyFile(rows, 7, true, false), std::size_t(0)}}) {
+    writeFile(dir.path(name), file);
+    EXPECT_FALSE(SampleStream(dir.path(name), count, true).hasRawRows()) << name;
+  }
+  struct Case {
+    std::size_t row;
+    int column;  // 0: the material index, 1..6: Lx..Vz; -1: V all zero
+    double value;
+  };
+  const Case cases[] = {{1234, 1, NAN},  {1234, 0, 2.5}, {1999, 0, -1.0},         {2999, 0, 6.0},
+                        {0, -1, 0.0},    {2001, 6, INFINITY}, {1500, 0, 4294967296.0}};
+  for (const auto& c : cases) {
+    auto bad = rows;
+    if (c.column >= 0) bad[7 * c.row + c.column] = c.value;
+    if (c.column < 0) std::fill_n(bad.begin() + std::ptrdiff_t(7 * c.row + 4), 3, 0.0);
+    if (c.row + 5 < 3000) bad[7 * (c.row + 5) + 2] = NAN;  // a later bad row must not win
+    const std::string in = dir.path("bad.npy");
+    writeFile(in, npyFile(bad, 7, true, false));
+    const std::string expected = errorOf([&] { readSamples(in, materials.size(), false); });
+    ASSERT_NE(expected.find(": row " + std::to_string(c.row) + ": "), std::string::npos) << expected;
+    for (std::size_t chunk : {std::size_t(1000), std::size_t(1) << 20})
+      for (bool overlap : {true, false})
+        EXPECT_EQ(errorOf([&] { streamToFile(ev, materials, in, dir.path("out.npy"), chunk, false, nullptr, overlap); }),
+                  expected)
+            << "chunk " << chunk << (overlap ? "" : ", serial");
+  }
 }
 
 // The grid is material-major: a direction file that fits one chunk is read once and evaluated

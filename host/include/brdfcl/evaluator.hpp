@@ -102,6 +102,13 @@ class Evaluator {
   };
   std::size_t evaluateRows(const std::vector<MaterialParams>& materials, const Rows& rows, float* rgb,
                            bool normalize);
+  // A samples file's rows as they lie in memory (the data of a float32 C-order NPY of shape
+  // (count, 7)): the material index (a float holding an integer), then Lx Ly Lz Vx Vy Vz.
+  // Evaluated in place as evaluateRows does, checked and normalized on the device as the samples
+  // readers would: returns the lowest row whose directions are not finite and non-zero or whose
+  // index is no integer in [0, materials.size()), or count. `launch` as in Rows.
+  std::size_t evaluateTableRows(const std::vector<MaterialParams>& materials, const float* rows, std::size_t count,
+                                float* rgb, std::size_t launch = 0);
   // Every material of [firstMaterial, firstMaterial + materialCount) x every row, material-major
   // (the indices are ignored): material k's row i at rgb + 3 * ((k - firstMaterial) * rows.count + i).
   std::size_t evaluateGridRows(const std::vector<MaterialParams>& materials, const Rows& rows, float* rgb,

@@ -90,6 +90,20 @@ class SampleStream {
   // Starts again from the first row (the grid re-reads directions once per material).
   void rewind();
 
+  // The rows as the file holds them, for the device to check and normalize where they lie
+  // (Evaluator::evaluateTableRows): served for float32 C-order NPY files of 7 columns read
+  // against a material count; hasRawRows() says whether. nextRows replaces `out` with the next
+  // 1..maxRows rows, unchecked, and returns false once the file is exhausted; throwRowError
+  // throws what next() would have thrown for row i of `rows` (e.g. "s.npy: row 12: field 'Lx'
+  // is not finite: nan"). next() and nextRows share one position.
+  struct RawRows {
+    std::vector<float> data;  // count rows of 7 floats: material, Lx Ly Lz Vx Vy Vz
+    std::size_t count = 0, firstRow = 0;
+  };
+  bool hasRawRows() const;
+  bool nextRows(std::size_t maxRows, RawRows& out);
+  [[noreturn]] void throwRowError(const RawRows& rows, std::size_t i) const;
+
   // The file's rows without parsing them: NPY's N; for a CSV, the lines after the header up to
   // the last one that is not blank (one pass over the file, a block at a time).
   std::size_t countRows();

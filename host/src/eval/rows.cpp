@@ -84,8 +84,9 @@ std::pair<cl::NDRange, cl::NDRange> rowsRange(std::size_t groups, std::size_t lo
 
 // Rows a launch takes: every row buffer within the device's largest allocation, and the
 // kernel's 32-bit row numbers within range.
-std::size_t rowsPerLaunch(const Evaluator& ev, const DeviceInfo& info, std::size_t asked) {
-  const std::size_t limit = std::max<std::size_t>(16, std::min<std::size_t>(ev.launchLimit(), info.maxAlloc / 12) / 16 * 16);
+std::size_t rowsPerLaunch(const Evaluator& ev, const DeviceInfo& info, std::size_t asked, std::size_t rowBytes = 12) {
+  const std::size_t limit =
+      std::max<std::size_t>(16, std::min<std::size_t>(ev.launchLimit(), info.maxAlloc / rowBytes) / 16 * 16);
   return asked ? std::min(asked, limit) : limit;
 }
 
@@ -137,6 +138,45 @@ std::size_t Evaluator::evaluateRows(const std::vector<MaterialParams>& materials
     return run.lowestBadRow(rows.count);
   } catch (const cl::Error&) {
     rethrowOpenCL("evaluating rows");
+  }
+}
+
+std::size_t Evaluator::evaluateTableRows(const std::vector<MaterialParams>& materials, const float* rows,
+                                         std::size_t count, float* rgb, std::size_t launch) {
+  if (count == 0) return 0;
+  if (!rows || !rgb) throw Error("internal: table rows without data", 3);
+  Batch b = prepare(materials);
+  const auto& ctx = rt_.context();
+  const bool cpu = rt_.info().type == "CPU";
+  const std::size_t chunk = rowsPerLaunch(*this, rt_.info(), launch, 28);
+  try {
+    cl::Kernel kernel(b.program, "eval_table_rows");
+    const std::size_t local = groupSizeFor(b.shape, kernel, rt_.device());
+    Launches run{rt_.queue(), {}, {}};
+    for (std::size_t first = 0; first < count; first += chunk) {
+      const std::size_t n = std::min(chunk, count - first);
+      const Wrapped in = wrap(ctx, cpu, rows + 7 * first, 28 * n, 4, CL_MEM_READ_ONLY);
+      const Wrapped out = wrap(ctx, cpu, rgb + 3 * first, 12 * n, 4, CL_MEM_WRITE_ONLY);
+      int arg = 0;
+      kernel.setArg(arg++, in.buffer);
+      kernel.setArg(arg++, in.at);
+      kernel.setArg(arg++, cl_uint(std::min<std::size_t>(materials.size(), UINT32_MAX)));
+      kernel.setArg(arg++, cl_uint(n));
+      kernel.setArg(arg++, b.materials);
+      kernel.setArg(arg++, b.tableBuffer);
+      kernel.setArg(arg++, b.tableSize);
+      kernel.setArg(arg++, out.buffer);
+      kernel.setArg(arg++, out.at);
+      kernel.setArg(arg++, run.badRowSlot(ctx, first));
+      const auto [global, group] = rowsRange((n + b.shape.lanes - 1) / b.shape.lanes, local);
+      run.q.enqueueNDRangeKernel(kernel, cl::NullRange, global, group);
+      run.publish(out.buffer, 12 * n + 4 * out.at);
+      run.keep.push_back(in.buffer);
+      run.keep.push_back(out.buffer);
+    }
+    return run.lowestBadRow(count);
+  } catch (const cl::Error&) {
+    rethrowOpenCL("evaluating sample rows");
   }
 }
 

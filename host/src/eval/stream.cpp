@@ -20,15 +20,18 @@ namespace {
 // materials they meet: every material by index (batch) or the block [m0, m0 + mc) (grid).
 struct Work {
   Samples samples;
+  SampleStream::RawRows raw;  // instead of samples, where the device checks and normalizes rows
   const Samples* shared = nullptr;
   std::size_t m0 = 0, mc = 0;
   const Samples& directions() const { return shared ? *shared : samples; }
 };
 
-// How one chunk is evaluated: `batch` for samples, `grid` for the grid's material block.
+// How one chunk is evaluated: `batch` for samples, `grid` for the grid's material block, and
+// `rows` (where set) for a file's raw rows: it returns the first bad row, or rows.count.
 struct Evaluate {
   std::function<void(const Samples&, float*)> batch;
   std::function<std::vector<float>(const Samples&, std::size_t, std::size_t)> grid;
+  std::function<std::size_t(const SampleStream::RawRows&, float*)> rows;
 };
 
 StreamStats stream(const std::vector<MaterialParams>& materials, SampleStream& samples, ResultWriter& out,
@@ -44,11 +47,17 @@ StreamStats stream(const std::vector<MaterialParams>& materials, SampleStream& s
                                       : materials.size();
   StreamStats stats;
 
+  const Evaluate evaluate = prepare();
+  // A float32 NPY goes to the device as the file holds it: no host pass over its rows.
+  const bool raw = !options.grid && evaluate.rows && samples.hasRawRows();
+
   // What to evaluate next, filled on the reader thread; false when nothing is left.
   std::function<bool(Work&)> produce;
   Samples allDirections;  // an in-memory grid's directions
   std::size_t material = mBegin;
-  if (!options.grid) {
+  if (raw) {
+    produce = [&](Work& w) { return samples.nextRows(chunk, w.raw); };
+  } else if (!options.grid) {
     produce = [&](Work& w) {
       w.m0 = 0;
       w.mc = nm;
@@ -86,8 +95,6 @@ StreamStats stream(const std::vector<MaterialParams>& materials, SampleStream& s
     }
   }
 
-  const Evaluate evaluate = prepare();
-
   // Two slots each: while slot k is evaluated, slot k+1 is read and the results of slot k-1
   // are written. Futures of std::async wait in their destructors, so an exception here never
   // leaves a thread touching a slot.
@@ -104,13 +111,19 @@ StreamStats stream(const std::vector<MaterialParams>& materials, SampleStream& s
 
     const Samples& dirs = w.directions();
     std::vector<float>& result = rgb[k % 2];
-    if (!options.grid) {
+    std::size_t read = dirs.size();
+    if (raw) {
+      read = w.raw.count;
+      result.resize(3 * read);
+      const std::size_t bad = evaluate.rows(w.raw, result.data());
+      if (bad < read) samples.throwRowError(w.raw, bad);
+    } else if (!options.grid) {
       result.resize(3 * dirs.size());
       evaluate.batch(dirs, result.data());
     } else {
       result = evaluate.grid(dirs, w.m0, w.mc);
     }
-    if (!options.grid || w.m0 == mBegin) stats.samples += dirs.size();
+    if (!options.grid || w.m0 == mBegin) stats.samples += read;
     stats.rows += result.size() / 3;
     ++stats.chunks;
 
@@ -129,6 +142,9 @@ StreamStats evaluateStream(Evaluator& evaluator, const std::vector<MaterialParam
     return Evaluate{[&](const Samples& dirs, float* rgb) { evaluator.evaluate(materials, dirs, rgb); },
                     [&](const Samples& dirs, std::size_t m0, std::size_t mc) {
                       return evaluator.evaluateGrid(materials, dirs, m0, mc);
+                    },
+                    [&](const SampleStream::RawRows& rows, float* rgb) {
+                      return evaluator.evaluateTableRows(materials, rows.data.data(), rows.count, rgb);
                     }};
   });
 }
@@ -141,7 +157,8 @@ StreamStats evaluateStream(MultiEvaluator& evaluator, const std::vector<Material
     return Evaluate{[&](const Samples& dirs, float* rgb) { batches->evaluate(dirs, rgb); },
                     [&](const Samples& dirs, std::size_t m0, std::size_t mc) {
                       return evaluator.evaluateGrid(materials, dirs, m0, mc);
-                    }};
+                    },
+                    {}};
   });
 }
 

@@ -810,6 +810,31 @@ class NpyReader {
 
   void rewind() { pos_ = first_; }
 
+  bool hasRawRows() const { return itemSize_ == 4 && !fortran_ && hasMaterial() && materialCount_ > 0; }
+
+  bool nextRows(std::size_t maxRows, SampleStream::RawRows& out) {
+    out.count = 0;
+    if (pos_ == end_) return false;
+    const std::size_t count = std::min<std::size_t>(maxRows, end_ - pos_);
+    out.data.resize(7 * count);
+    read(dataStart_ + pos_ * rowBytes(), reinterpret_cast<char*>(out.data.data()), count * rowBytes());
+    out.count = count;
+    out.firstRow = pos_;
+    pos_ += count;
+    return true;
+  }
+
+  // The row through the readers' own checks, which word its problem.
+  [[noreturn]] void throwRowError(const SampleStream::RawRows& rows, std::size_t i) const {
+    Samples one;
+    allocateSamples(1, true, one);
+    const RowChecker checker(materialCount_, true, one);
+    ChunkError error;
+    readNpyRows<float>(reinterpret_cast<const char*>(rows.data.data() + 7 * i), 1, 0, 1, 7, false, checker, error);
+    if (!error.message.empty()) throw Error(name_ + ": row " + std::to_string(rows.firstRow + i) + ": " + error.message);
+    throw Error(name_ + ": row " + std::to_string(rows.firstRow + i) + ": internal: reported as bad by the device", 3);
+  }
+
   std::size_t countRows() const { return rows_; }
 
   void selectRows(std::size_t first, std::size_t count) {
@@ -936,6 +961,19 @@ void SampleStream::rewind() {
     impl_->npy->rewind();
   else
     impl_->csv->rewind();
+}
+
+bool SampleStream::hasRawRows() const { return impl_->npy && impl_->npy->hasRawRows(); }
+
+bool SampleStream::nextRows(std::size_t maxRows, RawRows& out) {
+  if (maxRows == 0) throw std::invalid_argument("SampleStream::nextRows: maxRows must be at least 1");
+  if (!hasRawRows()) throw std::logic_error("SampleStream::nextRows: this file's rows are not served raw");
+  return impl_->npy->nextRows(maxRows, out);
+}
+
+void SampleStream::throwRowError(const RawRows& rows, std::size_t i) const {
+  if (!hasRawRows() || i >= rows.count) throw std::logic_error("SampleStream::throwRowError: no such raw row");
+  impl_->npy->throwRowError(rows, i);
 }
 
 std::size_t SampleStream::countRows() { return impl_->npy ? impl_->npy->countRows() : impl_->csv->countRows(); }
