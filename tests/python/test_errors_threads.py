@@ -32,6 +32,28 @@ def test_shape_and_dtype():
     raises(r"^L and V must have the same number of rows, got 2 and 1$", brdfcl.evaluate, M, L, V[:1])
 
 
+def test_out_array():
+    """out= is filled and returned, with the bits of a fresh result; a wrong array is refused."""
+    rng = np.random.default_rng(3)
+    Ls = rng.random((1000, 3), dtype=np.float32) + np.float32(0.01)
+    Vs = rng.random((1000, 3), dtype=np.float32) + np.float32(0.01)
+    idx = rng.integers(0, len(MATERIALS), 1000)
+    out = np.full((1000, 3), -1, np.float32)
+    assert brdfcl.evaluate(MATERIALS, Ls, Vs, idx, out=out) is out
+    assert np.array_equal(out.view(np.uint32), brdfcl.evaluate(MATERIALS, Ls, Vs, idx).view(np.uint32))
+    grid = np.empty((len(MATERIALS), 1000, 3), np.float32)
+    assert brdfcl.evaluate_grid(MATERIALS, Ls, Vs, out=grid) is grid
+    assert np.array_equal(grid.view(np.uint32), brdfcl.evaluate_grid(MATERIALS, Ls, Vs).view(np.uint32))
+    raises(r"^out must have shape \(2, 3\), got \(3, 3\)$", brdfcl.evaluate, M, L, V, out=np.empty((3, 3), np.float32))
+    raises(r"^out must be a writeable C-contiguous float32 array, got float64", brdfcl.evaluate, M, L, V,
+           out=np.empty((2, 3)))
+    raises(r"^out must be a writeable C-contiguous float32 array, got float32 \(not C-contiguous\)$",
+           brdfcl.evaluate, M, L, V, out=np.empty((3, 2), np.float32).T)
+    raises(r"^out must be a numpy array, got list$", brdfcl.evaluate, M, L, V, out=[[0, 0, 0], [0, 0, 0]])
+    both = np.array([[0, 0, 1], [1, 0, 1]], np.float32)
+    raises(r"^out must not overlap L or V; pass a separate array$", brdfcl.evaluate, M, both, V, out=both)
+
+
 def test_material_index():
     raises(r"^3 materials but no material_index", brdfcl.evaluate, MATERIALS, L, V)
     raises(r"^row 1: material index 3 out of range \(3 materials\)$", brdfcl.evaluate, MATERIALS, L, V, [0, 3])
