@@ -220,7 +220,7 @@ void registerAll() {
     }
   }
   // Interleaved, so that each library row sits next to its kernel row in one run.
-  for (const auto& [lobe, materials] : std::vector<std::pair<std::string, int>>{{"all", 256}, {"specular", 1}}) {
+  for (const auto& [lobe, materials] : std::vector<std::pair<std::string, int>>{{"all", 256}, {"all", 1}, {"specular", 1}}) {
     for (auto [name, path] : {std::pair{"kernel", InMemory::Kernel}, std::pair{"arrays", InMemory::Arrays},
                               std::pair{"table", InMemory::Table},
                               std::pair{"grid", InMemory::Grid}, std::pair{"grid-fresh", InMemory::GridFresh}}) {
