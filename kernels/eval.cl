@@ -57,6 +57,27 @@ BRDF_FN intw lane_index(void) {
 /* The lanes holding one of the first n rows of the group (the rest lie past the array's end). */
 BRDF_FN intw lanes_before(uint n) { return lane_index() < (int)n; }
 
+/* Each lane's material: index k where `inside`, else 0 (its f is discarded); one read for all
+   lanes in a program built for one material. */
+BRDF_FN material_lanes material_of_rows(__global const brdfcl_material* materials, intw k, intw inside) {
+#if BRDFCL_ONE_MATERIAL
+  return material_splat(materials);
+#else
+  return material_gather(materials, AS_UINTW(select((intw)(0), k, inside)));
+#endif
+}
+
+/* Evaluates the group's lanes, reports its bad rows and writes the first n rows of f. */
+BRDF_FN void finish_rows(material_lanes m, vec3w l, vec3w v, intw bad, uint first, uint n,
+                         __global const float* sheen_e, int sheen_e_size, __global float* out,
+                         __global uint* bad_row) {
+  report_bad_rows(bad & lanes_before(n), first, bad_row);
+  rgbw f = brdf_material(m, l, v, sheen_e, sheen_e_size);
+  if (n == BRDFCL_W)
+    rows_store(f, out);
+  else
+    rows_store_partial(f, out, n);
+}
 /* The material indices of the first n rows at p (the lanes past them read 0). */
 #define INDICES_BODY(T)                                          \
   if (n == BRDFCL_W) return CONVERT_LONGW(VLOADW(0, p));         \
@@ -93,20 +114,11 @@ __kernel void eval_rows(__global const float* restrict L, uint L_at, __global co
                           : load_indices_uint(index + index_at + first, n);
     intw inside = CONVERT_INTW((k >= 0) & (k < (long)material_count));
     bad |= !inside;
-#if BRDFCL_ONE_MATERIAL
-    m = material_splat(materials);
-#else
-    m = material_gather(materials, AS_UINTW(select((intw)(0), CONVERT_INTW(k), inside)));
-#endif
+    m = material_of_rows(materials, CONVERT_INTW(k), inside);
   } else {
     m = material_splat(materials);
   }
-  report_bad_rows(bad & lanes_before(n), first, bad_row);
-  rgbw f = brdf_material(m, l, v, sheen_e, sheen_e_size);
-  if (n == BRDFCL_W)
-    rows_store(f, out);
-  else
-    rows_store_partial(f, out, n);
+  finish_rows(m, l, v, bad, first, n, sheen_e, sheen_e_size, out, bad_row);
 }
 
 /* Every material (global id 1, from `first_material`) x every
@@ -129,13 +141,9 @@ __kernel void eval_grid_rows(__global const float* restrict L, uint L_at, __glob
   vec3w l = n == BRDFCL_W ? rows_load(L) : rows_load_partial(L, n);
   vec3w v = n == BRDFCL_W ? rows_load(V) : rows_load_partial(V, n);
   intw bad = normalize ? rows_normalize(&l) | rows_normalize(&v) : rows_not_finite(l) | rows_not_finite(v);
-  if (material == 0) report_bad_rows(bad & lanes_before(n), first, bad_row);
-  material_lanes m = material_splat(materials + first_material + material);
-  rgbw f = brdf_material(m, l, v, sheen_e, sheen_e_size);
-  if (n == BRDFCL_W)
-    rows_store(f, out);
-  else
-    rows_store_partial(f, out, n);
+  /* Material 0's work-items report the rows for all. */
+  finish_rows(material_splat(materials + first_material + material), l, v, material == 0 ? bad : (intw)(0), first, n,
+              sheen_e, sheen_e_size, out, bad_row);
 }
 
 /* A samples file's rows as they lie in memory (a float32 C-order NPY of shape (count, 7)): the
@@ -162,15 +170,6 @@ __kernel void eval_table_rows(__global const float* restrict rows, uint rows_at,
   realw limit = (realw)((float)min(material_count, 0x80000000u));
   intw inside = (k >= 0.0f) & (k < limit) & (trunc(k) == k);
   bad |= !inside;
-#if BRDFCL_ONE_MATERIAL
-  material_lanes m = material_splat(materials);
-#else
-  material_lanes m = material_gather(materials, AS_UINTW(select((intw)(0), CONVERT_INTW(k), inside)));
-#endif
-  report_bad_rows(bad & lanes_before(n), first, bad_row);
-  rgbw f = brdf_material(m, l, v, sheen_e, sheen_e_size);
-  if (n == BRDFCL_W)
-    rows_store(f, out);
-  else
-    rows_store_partial(f, out, n);
+  finish_rows(material_of_rows(materials, CONVERT_INTW(k), inside), l, v, bad, first, n, sheen_e, sheen_e_size, out,
+              bad_row);
 }
