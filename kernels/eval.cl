@@ -87,25 +87,39 @@ BRDF_FN void finish_rows(material_lanes m, vec3w l, vec3w v, intw bad, uint firs
 BRDF_FN longw load_indices_long(__global const long* p, uint n) { INDICES_BODY(long) }
 BRDF_FN longw load_indices_uint(__global const uint* p, uint n) { INDICES_BODY(uint) }
 
+/* Every row kernel comes as two entry points over one body: `name` runs the whole groups of
+   BRDFCL_W rows, one a work-item (global id 0), and `name_tail`, one work-item, the partial group
+   at the end of the array, if any. Testing for the partial group inside one kernel cost the whole
+   kernel ~13 % (register spills), so each entry point compiles one path: the body gets the
+   group's first row, its n rows and `partial` as a constant. */
+#define ROW_KERNEL_ARGS(...) __VA_ARGS__
+#define ROW_KERNELS(name, PARAMS, ARGS)                                                   \
+  __kernel void name PARAMS {                                                             \
+    uint first = get_global_id(0) * BRDFCL_W;                                             \
+    if (first + BRDFCL_W <= count) name##_group(first, BRDFCL_W, 0, ROW_KERNEL_ARGS ARGS); \
+  }                                                                                       \
+  __kernel void name##_tail PARAMS {                                                      \
+    uint first = count / BRDFCL_W * BRDFCL_W;                                             \
+    if (first < count) name##_group(first, count - first, 1, ROW_KERNEL_ARGS ARGS);      \
+  }
+
 /* Rows where the caller holds them: L, V and f as (count, 3) float rows, each at its offset (in
    elements) from the start of its buffer, so that the host can hand over any array in place.
    With `normalize`, L and V are normalized here by the samples readers' arithmetic (rows.h);
    without, they must be unit vectors, and only NaN and infinities are caught. `index` holds a
    material index a row, int64 (index_longs) or uint32, or is null: material 0 everywhere. A row whose L or V is no direction, or whose index is not in
    [0, material_count), lowers *bad_row to its number, and its f is undefined. */
-__kernel void eval_rows(__global const float* restrict L, uint L_at, __global const float* restrict V, uint V_at,
-                        __global const uint* restrict index, uint index_at, int index_longs, uint material_count, uint count,
-                        int normalize, __global const brdfcl_material* restrict materials,
-                        __global const float* restrict sheen_e, int sheen_e_size, __global float* restrict out,
-                        uint out_at, __global uint* restrict bad_row) {
-  uint first = get_global_id(0) * BRDFCL_W;
-  if (first >= count) return;
-  uint n = min(count - first, (uint)BRDFCL_W);
+BRDF_FN void eval_rows_group(uint first, uint n, const int partial, __global const float* restrict L, uint L_at,
+                             __global const float* restrict V, uint V_at, __global const uint* restrict index,
+                             uint index_at, int index_longs, uint material_count, uint count, int normalize,
+                             __global const brdfcl_material* restrict materials, __global const float* restrict sheen_e,
+                             int sheen_e_size, __global float* restrict out, uint out_at,
+                             __global uint* restrict bad_row) {
   L += L_at + 3 * (ulong)first;
   V += V_at + 3 * (ulong)first;
   out += out_at + 3 * (ulong)first;
-  vec3w l = n == BRDFCL_W ? rows_load(L) : rows_load_partial(L, n);
-  vec3w v = n == BRDFCL_W ? rows_load(V) : rows_load_partial(V, n);
+  vec3w l = partial ? rows_load_partial(L, n) : rows_load(L);
+  vec3w v = partial ? rows_load_partial(V, n) : rows_load(V);
   intw bad = normalize ? rows_normalize(&l) | rows_normalize(&v) : rows_not_finite(l) | rows_not_finite(v);
   material_lanes m;
   if (index) {
@@ -120,51 +134,59 @@ __kernel void eval_rows(__global const float* restrict L, uint L_at, __global co
   }
   finish_rows(m, l, v, bad, first, n, sheen_e, sheen_e_size, out, bad_row);
 }
+ROW_KERNELS(eval_rows,
+            (__global const float* restrict L, uint L_at, __global const float* restrict V, uint V_at,
+             __global const uint* restrict index, uint index_at, int index_longs, uint material_count, uint count,
+             int normalize, __global const brdfcl_material* restrict materials, __global const float* restrict sheen_e,
+             int sheen_e_size, __global float* restrict out, uint out_at, __global uint* restrict bad_row),
+            (L, L_at, V, V_at, index, index_at, index_longs, material_count, count, normalize, materials, sheen_e,
+             sheen_e_size, out, out_at, bad_row))
 
 /* Every material (global id 1, from `first_material`) x every
    row of L and V (global id 0), f written material-major: material k's row i at out row
    k * out_rows + i. Rows are checked (material 0's work-items report them) and normalized as in
    eval_rows. */
-__kernel void eval_grid_rows(__global const float* restrict L, uint L_at, __global const float* restrict V,
-                             uint V_at, uint count, int normalize,
-                             __global const brdfcl_material* restrict materials, uint first_material,
-                             __global const float* restrict sheen_e, int sheen_e_size,
-                             __global float* restrict out, uint out_at, ulong out_rows,
-                             __global uint* restrict bad_row) {
-  uint first = get_global_id(0) * BRDFCL_W;
-  if (first >= count) return;
-  uint n = min(count - first, (uint)BRDFCL_W);
+BRDF_FN void eval_grid_rows_group(uint first, uint n, const int partial, __global const float* restrict L,
+                                  uint L_at, __global const float* restrict V, uint V_at, uint count, int normalize,
+                                  __global const brdfcl_material* restrict materials, uint first_material,
+                                  __global const float* restrict sheen_e, int sheen_e_size, __global float* restrict out,
+                                  uint out_at, ulong out_rows, __global uint* restrict bad_row) {
   ulong material = get_global_id(1);
   L += L_at + 3 * (ulong)first;
   V += V_at + 3 * (ulong)first;
   out += out_at + 3 * (material * out_rows + first);
-  vec3w l = n == BRDFCL_W ? rows_load(L) : rows_load_partial(L, n);
-  vec3w v = n == BRDFCL_W ? rows_load(V) : rows_load_partial(V, n);
+  vec3w l = partial ? rows_load_partial(L, n) : rows_load(L);
+  vec3w v = partial ? rows_load_partial(V, n) : rows_load(V);
   intw bad = normalize ? rows_normalize(&l) | rows_normalize(&v) : rows_not_finite(l) | rows_not_finite(v);
   /* Material 0's work-items report the rows for all. */
   finish_rows(material_splat(materials + first_material + material), l, v, material == 0 ? bad : (intw)(0), first, n,
               sheen_e, sheen_e_size, out, bad_row);
 }
+ROW_KERNELS(eval_grid_rows,
+            (__global const float* restrict L, uint L_at, __global const float* restrict V, uint V_at, uint count,
+             int normalize, __global const brdfcl_material* restrict materials, uint first_material,
+             __global const float* restrict sheen_e, int sheen_e_size, __global float* restrict out, uint out_at,
+             ulong out_rows, __global uint* restrict bad_row),
+            (L, L_at, V, V_at, count, normalize, materials, first_material, sheen_e, sheen_e_size, out, out_at, out_rows,
+             bad_row))
 
 /* A samples file's rows as they lie in memory (a float32 C-order NPY of shape (count, 7)): the
    material index (a float that must hold an integer in [0, material_count)), then Lx Ly Lz Vx Vy
    Vz, read and checked as the samples readers read them, normalized as eval_rows does it; f is
    written as (count, 3) rows. */
-__kernel void eval_table_rows(__global const float* restrict rows, uint rows_at, uint material_count, uint count,
-                              __global const brdfcl_material* restrict materials,
-                              __global const float* restrict sheen_e, int sheen_e_size, __global float* restrict out,
-                              uint out_at, __global uint* restrict bad_row) {
-  uint first = get_global_id(0) * BRDFCL_W;
-  if (first >= count) return;
-  uint n = min(count - first, (uint)BRDFCL_W);
+BRDF_FN void eval_table_rows_group(uint first, uint n, const int partial, __global const float* restrict rows,
+                                   uint rows_at, uint material_count, uint count,
+                                   __global const brdfcl_material* restrict materials,
+                                   __global const float* restrict sheen_e, int sheen_e_size,
+                                   __global float* restrict out, uint out_at, __global uint* restrict bad_row) {
   __global const float* p = rows + rows_at + 7 * (ulong)first;
   out += out_at + 3 * (ulong)first;
   realw k;
   vec3w l, v;
-  if (n == BRDFCL_W)
-    table_load(p, &k, &l, &v);
-  else
+  if (partial)
     table_load_partial(p, n, &k, &l, &v);
+  else
+    table_load(p, &k, &l, &v);
   intw bad = rows_normalize(&l) | rows_normalize(&v);
   /* The readers' test: an index is good when it is an integer in [0, min(material_count, 2^31)). */
   realw limit = (realw)((float)min(material_count, 0x80000000u));
@@ -173,3 +195,8 @@ __kernel void eval_table_rows(__global const float* restrict rows, uint rows_at,
   finish_rows(material_of_rows(materials, CONVERT_INTW(k), inside), l, v, bad, first, n, sheen_e, sheen_e_size, out,
               bad_row);
 }
+ROW_KERNELS(eval_table_rows,
+            (__global const float* restrict rows, uint rows_at, uint material_count, uint count,
+             __global const brdfcl_material* restrict materials, __global const float* restrict sheen_e,
+             int sheen_e_size, __global float* restrict out, uint out_at, __global uint* restrict bad_row),
+            (rows, rows_at, material_count, count, materials, sheen_e, sheen_e_size, out, out_at, bad_row))

@@ -3,6 +3,7 @@
 // launch at a time. The device normalizes and checks the rows; only the lowest bad row comes back.
 #include <algorithm>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include <fmt/format.h>
@@ -47,9 +48,11 @@ std::size_t rowsPerLaunch(const Evaluator& ev, const DeviceInfo& info, std::size
 // on every way out (an error included) before that memory may be reused or freed.
 class RowLaunches {
  public:
-  RowLaunches(Runtime& rt, const cl::Program& program, const char* name, const LaneShape& shape)
-      : ctx_(rt.context()), q_(rt.queue()), cpu_(rt.info().type == "CPU"), kernel_(program, name),
-        lanes_(std::size_t(shape.lanes)), local_(groupSizeFor(shape, kernel_, rt.device())) {}
+  // The kernel `name` (whole groups of lanes) and `name`_tail (the partial group at the end).
+  RowLaunches(Runtime& rt, const cl::Program& program, const std::string& name, const LaneShape& shape)
+      : ctx_(rt.context()), q_(rt.queue()), cpu_(rt.info().type == "CPU"), kernel_(program, name.c_str()),
+        tail_(program, (name + "_tail").c_str()), lanes_(std::size_t(shape.lanes)),
+        local_(groupSizeFor(shape, kernel_, rt.device())) {}
   ~RowLaunches() {
     try {
       q_.finish();
@@ -59,7 +62,12 @@ class RowLaunches {
   RowLaunches(const RowLaunches&) = delete;
   RowLaunches& operator=(const RowLaunches&) = delete;
 
-  cl::Kernel& kernel() { return kernel_; }
+  // The arguments of the next launch, for both entry points.
+  template <class... A>
+  void args(const A&... a) {
+    setArgs(kernel_, a...);
+    setArgs(tail_, a...);
+  }
 
   Wrapped in(const void* p, std::size_t bytes, std::size_t element) {
     return wrap(p, bytes, element, CL_MEM_READ_ONLY);
@@ -75,12 +83,14 @@ class RowLaunches {
   // Runs the kernel (arguments set) over `rows` rows, for `materials` materials (0: a 1-D launch),
   // and makes the device's writes to `result` visible to the host (free on CPU devices).
   void launch(std::size_t rows, std::size_t materials, const Wrapped& result, std::size_t resultRows) {
-    const std::size_t groups = (rows + lanes_ - 1) / lanes_;
-    const bool grouped = groups >= 8 * local_;
-    const std::size_t global = grouped ? roundUp(groups, local_) : groups;
-    const cl::NDRange g = materials ? cl::NDRange(global, materials) : cl::NDRange(global);
-    const cl::NDRange l = !grouped ? cl::NullRange : materials ? cl::NDRange(local_, 1) : cl::NDRange(local_);
-    q_.enqueueNDRangeKernel(kernel_, cl::NullRange, g, l);
+    const std::size_t groups = rows / lanes_;
+    const auto range = [&](std::size_t n) { return materials ? cl::NDRange(n, materials) : cl::NDRange(n); };
+    if (groups > 0) {
+      const bool grouped = groups >= 8 * local_;
+      const cl::NDRange local = !grouped ? cl::NullRange : materials ? cl::NDRange(local_, 1) : cl::NDRange(local_);
+      q_.enqueueNDRangeKernel(kernel_, cl::NullRange, range(grouped ? roundUp(groups, local_) : groups), local);
+    }
+    if (rows % lanes_) q_.enqueueNDRangeKernel(tail_, cl::NullRange, range(1), cl::NullRange);
     const std::size_t bytes = 12 * resultRows + 4 * result.at;
     void* p = q_.enqueueMapBuffer(result.buffer, CL_FALSE, CL_MAP_READ, 0, bytes);
     q_.enqueueUnmapMemObject(result.buffer, p);
@@ -111,7 +121,7 @@ class RowLaunches {
   const cl::Context& ctx_;
   cl::CommandQueue& q_;
   bool cpu_;
-  cl::Kernel kernel_;
+  cl::Kernel kernel_, tail_;
   std::size_t lanes_, local_;
   std::vector<cl::Buffer> keep_;
   std::vector<std::pair<std::size_t, cl::Buffer>> bad_;  // (first row of the launch, its slot)
@@ -137,7 +147,7 @@ std::size_t Evaluator::evaluateRows(const std::vector<MaterialParams>& materials
                             : rows.index32 ? run.in(rows.index32 + first, 4 * n, 4)
                                            : Wrapped{};
       const Wrapped out = run.out(rgb + 3 * first, n);
-      setArgs(run.kernel(), L.buffer, L.at, V.buffer, V.at, index.buffer, index.at, cl_int(rows.index != nullptr),
+      run.args(L.buffer, L.at, V.buffer, V.at, index.buffer, index.at, cl_int(rows.index != nullptr),
               count32(materials.size()), cl_uint(n), cl_int(normalize), b.materials, b.tableBuffer, b.tableSize,
               out.buffer, out.at, run.badRowSlot(first));
       run.launch(n, 0, out, n);
@@ -159,7 +169,7 @@ std::size_t Evaluator::evaluateTableRows(const std::vector<MaterialParams>& mate
     for (std::size_t first = 0; first < count; first += chunk) {
       const std::size_t n = std::min(chunk, count - first);
       const Wrapped in = run.in(rows + 7 * first, 28 * n, 4), out = run.out(rgb + 3 * first, n);
-      setArgs(run.kernel(), in.buffer, in.at, count32(materials.size()), cl_uint(n), b.materials, b.tableBuffer,
+      run.args(in.buffer, in.at, count32(materials.size()), cl_uint(n), b.materials, b.tableBuffer,
               b.tableSize, out.buffer, out.at, run.badRowSlot(first));
       run.launch(n, 0, out, n);
     }
@@ -189,7 +199,7 @@ std::size_t Evaluator::evaluateGridRows(const std::vector<MaterialParams>& mater
       for (std::size_t m0 = 0; m0 < nm; m0 += perLaunch) {
         const std::size_t mc = std::min(perLaunch, nm - m0), outRows = (mc - 1) * n + count;
         const Wrapped out = run.out(rgb + 3 * (m0 * n + first), outRows);
-        setArgs(run.kernel(), L.buffer, L.at, V.buffer, V.at, cl_uint(count), cl_int(normalize), b.materials,
+        run.args(L.buffer, L.at, V.buffer, V.at, cl_uint(count), cl_int(normalize), b.materials,
                 cl_uint(firstMaterial + m0), b.tableBuffer, b.tableSize, out.buffer, out.at, cl_ulong(n),
                 run.badRowSlot(first));
         run.launch(count, mc, out, outRows);
