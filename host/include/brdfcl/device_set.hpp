@@ -78,8 +78,10 @@ class MultiEvaluator {
   std::vector<float> evaluateGrid(const std::vector<MaterialParams>& materials, const Samples& samples,
                                   std::size_t firstMaterial, std::size_t materialCount);
 
-  // One SoaBatch per device for repeated evaluate() calls on one material list (the stream):
-  // each device's planes hold `capacity` samples and are allocated once.
+  // Repeated evaluate() calls on one material list (the stream): the materials are checked and
+  // every device's program built once, here; each call splits its samples across the devices,
+  // each range read and written in place by the row kernel. `capacity` (samples a call holds at
+  // most) is kept for callers; the row kernels need no planes sized by it.
   class Batches {
    public:
     Batches(MultiEvaluator& multi, const std::vector<MaterialParams>& materials, std::size_t capacity);
@@ -88,7 +90,7 @@ class MultiEvaluator {
 
    private:
     MultiEvaluator& multi_;
-    std::vector<std::unique_ptr<SoaBatch>> batches_;
+    std::vector<MaterialParams> materials_;
   };
 
  private:

@@ -35,6 +35,16 @@ Samples slice(const Samples& s, std::size_t first, std::size_t count) {
   out.V.assign(s.V.begin() + 3 * first, s.V.begin() + 3 * (first + count));
   return out;
 }
+
+// Samples [first, first + count) of a checked batch on one device, read and written in place by
+// the row kernel (no slice, no result copy).
+void evaluateRange(Evaluator& ev, const std::vector<MaterialParams>& materials, const Samples& s, std::size_t first,
+                   std::size_t count, float* rgb) {
+  Evaluator::Rows rows{s.L.data() + 3 * first, s.V.data() + 3 * first, nullptr, count};
+  rows.index32 = s.material.data() + first;
+  if (ev.evaluateRows(materials, rows, rgb + 3 * first, false) != count)
+    throw Error(fmt::format("internal: a checked sample in [{}, {}) reported as bad", first, first + count), 3);
+}
 }  // namespace
 
 MultiEvaluator::MultiEvaluator(DeviceSet& devices, EvalOptions options) : devices_(devices), options_(options) {
@@ -51,8 +61,7 @@ std::vector<float> MultiEvaluator::evaluate(const std::vector<MaterialParams>& m
   checkSamples(samples, materials.size(), true);
   std::vector<float> rgb(3 * samples.size());
   devices_.run(samples.size(), kGrain, [&](std::size_t k, std::size_t first, std::size_t count) {
-    const auto part = evaluators_[k]->evaluate(materials, slice(samples, first, count));
-    std::copy(part.begin(), part.end(), rgb.begin() + std::ptrdiff_t(3 * first));
+    evaluateRange(*evaluators_[k], materials, samples, first, count, rgb.data());
   });
   // An empty batch runs nothing, but its materials are still checked, as Evaluator does.
   if (samples.size() == 0) evaluators_[0]->evaluate(materials, samples);
@@ -76,8 +85,7 @@ std::vector<float> MultiEvaluator::evaluateGrid(const std::vector<MaterialParams
   if (materialCount >= devices_.size()) {
     // Whole rows per device: each row is bit-identical to that row of the whole grid.
     devices_.run(materialCount, 1, [&](std::size_t k, std::size_t first, std::size_t count) {
-      const auto part = evaluators_[k]->evaluateGrid(materials, samples, firstMaterial + first, count);
-      std::copy(part.begin(), part.end(), rgb.begin() + std::ptrdiff_t(3 * n * first));
+      evaluators_[k]->evaluateGrid(materials, samples, firstMaterial + first, count, rgb.data() + 3 * n * first);
     });
   } else {
     // Fewer rows than devices (a direction file read once per material): split the directions.
@@ -93,17 +101,18 @@ std::vector<float> MultiEvaluator::evaluateGrid(const std::vector<MaterialParams
 
 MultiEvaluator::Batches::Batches(MultiEvaluator& multi, const std::vector<MaterialParams>& materials,
                                  std::size_t capacity)
-    : multi_(multi) {
-  for (auto& ev : multi.evaluators_)
-    batches_.push_back(std::make_unique<SoaBatch>(*ev, materials, std::min(capacity, ev->launchLimit()), SoaBatch::Scratch{}));
+    : multi_(multi), materials_(materials) {
+  // Checks the materials and builds every device's program now, as a batch of one sample.
+  (void)capacity;
+  for (auto& ev : multi.evaluators_) SoaBatch(*ev, materials, 1);
 }
 
 MultiEvaluator::Batches::~Batches() = default;
 
 void MultiEvaluator::Batches::evaluate(const Samples& samples, float* rgb) {
-  checkSamples(samples, batches_[0]->packedMaterials().size(), true);
+  checkSamples(samples, materials_.size(), true);
   multi_.devices_.run(samples.size(), kGrain, [&](std::size_t k, std::size_t first, std::size_t count) {
-    batches_[k]->evaluate(slice(samples, first, count), rgb + 3 * first);
+    evaluateRange(*multi_.evaluators_[k], materials_, samples, first, count, rgb);
   });
 }
 
