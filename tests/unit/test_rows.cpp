@@ -161,6 +161,33 @@ TEST_P(RowsAtWidth, TableRowsGiveTheArraysBits) {
   }
 }
 
+// The planes kernel (eval_samples, SoaBatch: the bench's and the peers' path) gives the bits of
+// the row kernel that every library path uses, many materials gathered or one read once.
+TEST_P(RowsAtWidth, PlanesKernelGivesTheRowKernelsBits) {
+  ForcedLanes forced(GetParam());
+  std::mt19937_64 rng(seed() + 83 + std::uint64_t(GetParam()));
+  for (std::size_t count : {std::size_t(1), std::size_t(7)}) {
+    std::vector<MaterialParams> materials;
+    for (std::size_t m = 0; m < count; ++m) materials.push_back(randomMaterial(rng));
+    const Samples s = randomSamples(rng, 3001, count);
+    Evaluator ev(runtime(), EvalOptions{});
+    const std::vector<float> rows = ev.evaluate(materials, s);
+    SoaBatch batch(ev, materials, s.size());
+    for (int c = 0; c < 3; ++c)
+      for (std::size_t i = 0; i < s.size(); ++i) {
+        batch.direction(c)[i] = s.L[3 * i + std::size_t(c)];
+        batch.direction(3 + c)[i] = s.V[3 * i + std::size_t(c)];
+      }
+    std::copy(s.material.begin(), s.material.end(), batch.materialIndex());
+    batch.setCount(s.size());
+    batch.run();
+    std::vector<float> planes(3 * s.size());
+    for (std::size_t i = 0; i < s.size(); ++i)
+      for (int c = 0; c < 3; ++c) planes[3 * i + std::size_t(c)] = batch.result(c)[i];
+    expectSameBits(planes.data(), rows.data(), planes.size(), std::to_string(count) + " materials, planes kernel");
+  }
+}
+
 INSTANTIATE_TEST_SUITE_P(Widths, RowsAtWidth, testing::Values(0, 1, 4, 8),
                          [](const testing::TestParamInfo<int>& i) { return i.param ? "W" + std::to_string(i.param) : std::string("Default"); });
 
