@@ -80,11 +80,10 @@ class MultiEvaluator {
 
   // Repeated evaluate() calls on one material list (the stream): the materials are checked and
   // every device's program built once, here; each call splits its samples across the devices,
-  // each range read and written in place by the row kernel. `capacity` (samples a call holds at
-  // most) is kept for callers; the row kernels need no planes sized by it.
+  // each range read and written in place by the row kernel.
   class Batches {
    public:
-    Batches(MultiEvaluator& multi, const std::vector<MaterialParams>& materials, std::size_t capacity);
+    Batches(MultiEvaluator& multi, const std::vector<MaterialParams>& materials);
     ~Batches();
     void evaluate(const Samples& samples, float* rgb);
 

@@ -41,11 +41,12 @@ class SoaBatch;
 // Thread safety. One Runtime may be shared by any number of threads (see runtime.hpp), and so
 // may one Evaluator: evaluate(), evaluateGrid() and sheenAlbedo() may run concurrently on the
 // same Evaluator (the table is baked once, under a lock; options() never changes). Each call
-// creates its own cl::Kernel and takes its planes from the evaluator's pool (under a lock; a set
-// serves one call at a time), so concurrent calls never share kernel arguments or memory and
-// give bit-for-bit the results of the same calls made one after another. The pool keeps up to
-// four idle sets for the next calls (about 40 MiB each at the default chunk; a large grid's are
-// larger) until the Evaluator is destroyed. The simplest pattern
+// creates its own cl::Kernel and wraps only its caller's memory (the row kernels), or takes its
+// planes from the evaluator's pool (scratch SoaBatches, e.g. evaluateArrays on float64; under a
+// lock, a set serves one call at a time), so concurrent calls never share kernel arguments or
+// memory and give bit-for-bit the results of the same calls made one after another. The pool
+// keeps up to four idle sets for the next calls (about 40 MiB each at the default chunk) until
+// the Evaluator is destroyed. The simplest pattern
 // is one Evaluator per thread on one shared Runtime. A SoaBatch is NOT thread-safe: use each
 // batch from one thread at a time (different batches, even of one Evaluator, may run
 // concurrently). The Evaluator and Runtime must outlive every call and every SoaBatch.
@@ -127,9 +128,8 @@ class Evaluator {
   struct Planes;  // a batch's page-aligned host planes and the device buffers wrapping them
   Batch prepare(const std::vector<MaterialParams>& materials);
   // The pool of planes scratch batches reuse, so that repeated calls neither allocate nor fault
-  // fresh pages: take returns idle planes of exactly `floats` per plane (and as many planes:
-  // single = 1 for the grid's one-plane sets), or nullptr.
-  std::unique_ptr<Planes> takePlanes(std::size_t floats, int single);
+  // fresh pages: take returns idle planes of exactly `floats` per plane, or nullptr.
+  std::unique_ptr<Planes> takePlanes(std::size_t floats);
   void givePlanes(std::unique_ptr<Planes> planes);
 
   Runtime& rt_;
@@ -189,10 +189,6 @@ class SoaBatch {
   void start();
   void finish();
 
-  // Evaluates `samples` (any count; capacity() at a time) into rgb, 3 floats a sample: what
-  // Evaluator::evaluate does, on this batch's buffers, so a stream of chunks allocates once.
-  // Throws Error if a material index is out of range.
-  void evaluate(const Samples& samples, float* rgb);
 
  private:
   SoaBatch(Evaluator& evaluator, const std::vector<MaterialParams>& materials, std::size_t capacity, bool pooled);

@@ -99,11 +99,9 @@ std::vector<float> MultiEvaluator::evaluateGrid(const std::vector<MaterialParams
   return rgb;
 }
 
-MultiEvaluator::Batches::Batches(MultiEvaluator& multi, const std::vector<MaterialParams>& materials,
-                                 std::size_t capacity)
+MultiEvaluator::Batches::Batches(MultiEvaluator& multi, const std::vector<MaterialParams>& materials)
     : multi_(multi), materials_(materials) {
-  // Checks the materials and builds every device's program now, as a batch of one sample.
-  (void)capacity;
+  // Checks the materials and builds every device's program now, as a batch of one sample does.
   for (auto& ev : multi.evaluators_) SoaBatch(*ev, materials, 1);
 }
 

@@ -83,26 +83,6 @@ void checkDirections(const Samples& s) {
   for (std::size_t i = 0; i < s.size(); ++i) checkSample(s, i);
 }
 
-// Interleaved x y z rows to three planes and back, one pass each; the planes never alias the
-// rows, which lets the compiler vectorize both loops.
-void toPlanes(const float* __restrict rows, std::size_t n, float* __restrict x, float* __restrict y,
-              float* __restrict z) {
-  for (std::size_t i = 0; i < n; ++i) {
-    x[i] = rows[3 * i];
-    y[i] = rows[3 * i + 1];
-    z[i] = rows[3 * i + 2];
-  }
-}
-
-void toRows(const float* __restrict x, const float* __restrict y, const float* __restrict z, std::size_t n,
-            float* __restrict rows) {
-  for (std::size_t i = 0; i < n; ++i) {
-    rows[3 * i] = x[i];
-    rows[3 * i + 1] = y[i];
-    rows[3 * i + 2] = z[i];
-  }
-}
-
 }  // namespace
 
 Evaluator::Evaluator(Runtime& rt, EvalOptions options) : rt_(rt), options_(options) { checkProfileOptions(options); }
@@ -111,25 +91,19 @@ Evaluator::Evaluator(Runtime& rt, EvalOptions options) : rt_(rt), options_(optio
 // buffers that hand them to the device in place; the buffers go before the memory they wrap.
 struct Evaluator::Planes {
   std::size_t floats = 0;
-  int single = 0;
   float* host[9] = {};
   std::uint32_t* index = nullptr;
   cl::Buffer buffers[9], indexBuffer;
 
-  // A batch's nine planes and its index, or (single) one read-write plane alone, for the grid.
-  Planes(const cl::Context& ctx, std::size_t n, int single = 0) : floats(n), single(single) {
+  Planes(const cl::Context& ctx, std::size_t n) : floats(n) {
     try {
-      for (int k = 0; k < (single ? 1 : 9); ++k) host[k] = allocPages<float>(n);
-      if (!single) index = allocPages<std::uint32_t>(n);
+      for (auto*& p : host) p = allocPages<float>(n);
+      index = allocPages<std::uint32_t>(n);
     } catch (...) {
       release();
       throw;
     }
     try {
-      if (single) {
-        buffers[0] = cl::Buffer(ctx, CL_MEM_READ_WRITE | CL_MEM_USE_HOST_PTR, n * 4, host[0]);
-        return;
-      }
       for (int k = 0; k < 9; ++k)
         buffers[k] = cl::Buffer(ctx, (k < 6 ? CL_MEM_READ_ONLY : CL_MEM_WRITE_ONLY) | CL_MEM_USE_HOST_PTR, n * 4, host[k]);
       indexBuffer = cl::Buffer(ctx, CL_MEM_READ_ONLY | CL_MEM_USE_HOST_PTR, n * 4, index);
@@ -153,10 +127,10 @@ struct Evaluator::Planes {
 
 Evaluator::~Evaluator() = default;
 
-std::unique_ptr<Evaluator::Planes> Evaluator::takePlanes(std::size_t floats, int single) {
+std::unique_ptr<Evaluator::Planes> Evaluator::takePlanes(std::size_t floats) {
   std::lock_guard<std::mutex> lock(poolMutex_);
   for (auto it = pool_.begin(); it != pool_.end(); ++it)
-    if ((*it)->floats == floats && (*it)->single == single) {
+    if ((*it)->floats == floats) {
       auto planes = std::move(*it);
       pool_.erase(it);
       return planes;
@@ -244,7 +218,7 @@ SoaBatch::SoaBatch(Evaluator& evaluator, const std::vector<MaterialParams>& mate
   // work-group size never reads past them. Pooled planes of the same size were padded alike,
   // and no batch writes past its capacity, so their padding is still zero.
   allocated_ = roundUp(capacity_, kLanes * device_->local);
-  if (pooled_) set_ = ev_.takePlanes(allocated_, 0);
+  if (pooled_) set_ = ev_.takePlanes(allocated_);
   if (!set_) set_ = std::make_unique<Evaluator::Planes>(ev_.rt_.context(), allocated_);
   for (int k = 0; k < 9; ++k) planes_[k] = set_->host[k];
   index_ = set_->index;
@@ -354,37 +328,6 @@ std::vector<float> Evaluator::evaluate(const std::vector<MaterialParams>& materi
   std::vector<float> rgb(3 * n);
   evaluate(materials, samples, rgb.data());
   return rgb;
-}
-
-void SoaBatch::evaluate(const Samples& samples, float* rgb) {
-  const std::size_t n = samples.size();
-  if (samples.material.size() != n)
-    throw Error(fmt::format("internal: {} material indices for {} samples", samples.material.size(), n), 3);
-  std::uint32_t outOfRange = 0;
-  for (const std::uint32_t m : samples.material) outOfRange |= std::uint32_t(m >= packed_.size());
-  for (std::size_t i = 0; outOfRange && i < n; ++i)
-    if (samples.material[i] >= packed_.size())
-      throw Error(fmt::format("sample {}: material index {} out of range ({} materials)", i, samples.material[i],
-                              packed_.size()));
-  checkDirections(samples);
-  const std::size_t chunk = capacity();
-  for (std::size_t first = 0; first < n; first += chunk) {
-    const std::size_t count = std::min(chunk, n - first);
-    float* planes[6];
-    for (int k = 0; k < 6; ++k) planes[k] = direction(k);
-    std::uint32_t* index = materialIndex();
-    // Clear what a previous, longer run left behind past `count` (padding lanes give f = 0).
-    if (count < chunk) {
-      for (auto* p : planes) std::fill(p + count, p + chunk, 0.0f);
-      std::fill(index + count, index + chunk, 0u);
-    }
-    toPlanes(samples.L.data() + 3 * first, count, planes[0], planes[1], planes[2]);
-    toPlanes(samples.V.data() + 3 * first, count, planes[3], planes[4], planes[5]);
-    std::copy_n(samples.material.data() + first, count, index);
-    setCount(count);
-    run();
-    toRows(result(0), result(1), result(2), count, rgb + 3 * first);
-  }
 }
 
 std::vector<float> Evaluator::evaluateGrid(const std::vector<MaterialParams>& materials, const Samples& samples) {

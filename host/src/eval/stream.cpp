@@ -153,7 +153,7 @@ StreamStats evaluateStream(MultiEvaluator& evaluator, const std::vector<Material
                            SampleStream& samples, ResultWriter& out, const StreamOptions& options) {
   std::shared_ptr<MultiEvaluator::Batches> batches;
   return stream(materials, samples, out, options, [&] {
-    if (!options.grid) batches = std::make_shared<MultiEvaluator::Batches>(evaluator, materials, options.chunk);
+    if (!options.grid) batches = std::make_shared<MultiEvaluator::Batches>(evaluator, materials);
     return Evaluate{[&](const Samples& dirs, float* rgb) { batches->evaluate(dirs, rgb); },
                     [&](const Samples& dirs, std::size_t m0, std::size_t mc) {
                       return evaluator.evaluateGrid(materials, dirs, m0, mc);
