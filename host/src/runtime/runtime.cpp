@@ -199,6 +199,11 @@ Runtime::Runtime(const std::string& selectorArg) {
     device_ = devices[chosen].first;
     info_ = describe(chosen, device_, devices[chosen].second);
     clStd_ = pickStd(info_.openclC);
+    // OpenCL lets single-precision division be off by 2.5 ulp and sqrt by 3 (NVIDIA's are). The
+    // row kernels normalize directions exactly as the host's readers do, to the bit, and every
+    // result is then the same on any device that rounds these correctly; ask for it where offered.
+    if (device_.getInfo<CL_DEVICE_SINGLE_FP_CONFIG>() & CL_FP_CORRECTLY_ROUNDED_DIVIDE_SQRT)
+      mathOptions_ = " -cl-fp32-correctly-rounded-divide-sqrt";
     context_ = cl::Context(device_);
     queue_ = cl::CommandQueue(context_, device_);
   } catch (const cl::Error&) {
@@ -210,7 +215,7 @@ cl::Program Runtime::program(const std::string& kernelFile, const std::string& d
   std::string source = kernelSource(kernelFile);
   // -w: PoCL prints clang warnings (e.g. the float16 ABI note on AVX2) to stderr; real
   // problems are errors and reach the user through the build log.
-  std::string options = clStd_ + " -w " + defines;
+  std::string options = clStd_ + mathOptions_ + " -w " + defines;
   std::lock_guard<std::mutex> lock(cacheMutex_);
   auto key = std::make_pair(options, source);
   if (auto it = cache_.find(key); it != cache_.end()) return it->second;
