@@ -45,4 +45,6 @@ double streamTriadBytesPerSecond(std::size_t floats, int repeats) {
   return 3.0 * 4.0 * double(floats) / best;
 }
 
+int threads() { return omp_get_max_threads(); }
+
 }  // namespace brdfcl::peers

@@ -31,4 +31,7 @@ void run(Flavor flavor, const std::string& workload, const Input& in);
 // counted as STREAM does (3 arrays x 4 bytes per element), best of `repeats`.
 double streamTriadBytesPerSecond(std::size_t floats, int repeats);
 
+// Threads the OpenMP peer and the triad run on (every core unless OMP_NUM_THREADS says otherwise).
+int threads();
+
 }  // namespace brdfcl::peers

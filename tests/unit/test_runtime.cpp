@@ -1,14 +1,18 @@
-// Runtime tests: device listing, selection errors, include expansion and the program cache.
+// Runtime tests: device listing, selection errors, include expansion, the program cache and the
+// profiling queue.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <chrono>
 #include <cstdlib>
 #include <map>
 #include <regex>
 #include <string>
 
 #include "brdfcl/error.hpp"
+#include "brdfcl/evaluator.hpp"
 #include "brdfcl/runtime.hpp"
+#include "support.hpp"
 
 using namespace brdfcl;
 
@@ -103,3 +107,25 @@ TEST(Runtime, BuildFailureCarriesTheBuildLog) {
   }
 }
 
+// The queue profiles, so a batch reports its launch's device time: more than nothing, and no
+// more than the whole run that contains it.
+TEST(Runtime, BatchReportsItsLaunchTime) {
+  std::mt19937_64 rng(test::seed() + 5);
+  Evaluator ev(test::runtime(), EvalOptions{});
+  const std::vector<MaterialParams> materials = {test::randomMaterial(rng)};
+  const Samples s = test::randomSamples(rng, 1 << 16, 1);
+  SoaBatch batch(ev, materials, s.size());
+  EXPECT_EQ(batch.lastKernelSeconds(), 0.0);
+  for (int c = 0; c < 3; ++c)
+    for (std::size_t i = 0; i < s.size(); ++i) {
+      batch.direction(c)[i] = s.L[3 * i + std::size_t(c)];
+      batch.direction(3 + c)[i] = s.V[3 * i + std::size_t(c)];
+    }
+  batch.setCount(s.size());
+  batch.run();  // program build
+  const auto t0 = std::chrono::steady_clock::now();
+  batch.run();
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  EXPECT_GT(batch.lastKernelSeconds(), 0.0);
+  EXPECT_LE(batch.lastKernelSeconds(), wall);
+}

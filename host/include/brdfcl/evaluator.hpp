@@ -188,6 +188,9 @@ class SoaBatch {
   // it. Between the two, leave this batch's planes alone (fill another batch meanwhile).
   void start();
   void finish();
+  // Device time of the last run's kernel alone (its profiling event), without the copies a
+  // device that caches host memory (a GPU) makes; 0 before the first run.
+  double lastKernelSeconds() const;
 
 
  private:
@@ -203,7 +206,8 @@ class SoaBatch {
   std::uint32_t* index_ = nullptr;
   bool inputsChanged_ = true;
   bool running_ = false;
-  cl::Event done_;  // the last command start() enqueued
+  cl::Event done_;    // the last command start() enqueued
+  cl::Event kernel_;  // the launch itself
   std::vector<brdfcl_material> packed_;
   std::vector<float> tableValues_;
   int tableSize_ = 2;

@@ -299,7 +299,8 @@ void SoaBatch::start() {
     std::size_t global = roundUp(count_, kLanes) / lanes;
     const bool grouped = global >= 8 * d.local && roundUp(global, d.local) * lanes <= allocated_;
     if (grouped) global = roundUp(global, d.local);
-    q.enqueueNDRangeKernel(d.kernel, cl::NullRange, cl::NDRange(global), grouped ? cl::NDRange(d.local) : cl::NullRange);
+    q.enqueueNDRangeKernel(d.kernel, cl::NullRange, cl::NDRange(global), grouped ? cl::NDRange(d.local) : cl::NullRange,
+                           nullptr, &kernel_);
     for (int k = 6; k < 9; ++k) {
       void* p = q.enqueueMapBuffer(set_->buffers[k], CL_FALSE, CL_MAP_READ, 0, allocated_ * 4);
       q.enqueueUnmapMemObject(set_->buffers[k], p, nullptr, k == 8 ? &done_ : nullptr);
@@ -318,6 +319,17 @@ void SoaBatch::finish() {
     done_.wait();
   } catch (const cl::Error&) {
     rethrowOpenCL("evaluating samples");
+  }
+}
+
+double SoaBatch::lastKernelSeconds() const {
+  if (kernel_() == nullptr) return 0;
+  try {
+    const auto begin = kernel_.getProfilingInfo<CL_PROFILING_COMMAND_START>();
+    const auto end = kernel_.getProfilingInfo<CL_PROFILING_COMMAND_END>();
+    return double(end - begin) * 1e-9;
+  } catch (const cl::Error&) {
+    rethrowOpenCL("reading the kernel's profiling times");
   }
 }
 
