@@ -3,6 +3,7 @@
 // CSV formatting runs on several threads; writes are plain POSIX calls so every errno surfaces.
 #include <fcntl.h>
 #include <sys/stat.h>
+#include <sys/vfs.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -11,6 +12,7 @@
 #include <charconv>
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <stdexcept>
@@ -32,31 +34,56 @@ using detail::printable;
 
 // Unbuffered POSIX writes through our own buffer: every failure (ENOSPC, EFBIG, EIO at close)
 // surfaces as an errno that we turn into a message naming the user's path, not the temporary.
+//
+// A `direct` file (an NPY result going to a regular file) writes its whole blocks with O_DIRECT
+// from a page-aligned buffer, where the filesystem allows it: the result then goes from our one
+// reused buffer to the disk, without a copy into fresh page-cache pages. Those pages are what
+// made NPY output slow (bench/README.md, "The library and files at kernel speed"): writing into
+// them costs a copy and, on a VM that hands freed memory back to its host, a fault per page. The
+// tail and the header patch go through the page cache; other filesystems (tmpfs, NFS) get
+// buffered writes throughout.
 class OutputFile {
  public:
+  static constexpr std::size_t kBuffer = std::size_t(1) << 20;  // a multiple of any block size
+  static constexpr std::size_t kAlign = 4096;                   // O_DIRECT's memory and offset alignment
+
   // Writes `fd`, which it closes when it `owns` it (not stdout's).
-  OutputFile(int fd, bool owns, const std::string& userPath) : userPath_(userPath), fd_(fd), owns_(owns) {
-    buf_.resize(1 << 20);
+  OutputFile(int fd, bool owns, const std::string& userPath, bool direct = false)
+      : userPath_(userPath), fd_(fd), owns_(owns), buf_(static_cast<char*>(std::aligned_alloc(kAlign, kBuffer))) {
+    if (!buf_) throw Error("out of host memory allocating an output buffer for '" + printable(userPath_, 300) + "'");
+    if (direct && onLocalDisk(fd_)) {
+      const int flags = ::fcntl(fd_, F_GETFL);
+      direct_ = flags >= 0 && ::fcntl(fd_, F_SETFL, flags | O_DIRECT) == 0;
+    }
   }
   ~OutputFile() {
     if (fd_ >= 0 && owns_) ::close(fd_);
+    std::free(buf_);
   }
   OutputFile(const OutputFile&) = delete;
   OutputFile& operator=(const OutputFile&) = delete;
 
   void append(const void* p, std::size_t n) {
     if (n == 0) return;  // p may be the null data() of an empty vector
-    if (n > buf_.size() - used_) {
+    const char* c = static_cast<const char*>(p);
+    if (!direct_ && n > kBuffer - used_) {
       flush();
-      writeAll(static_cast<const char*>(p), n);
+      writeAll(c, n);
       return;
     }
-    std::memcpy(buf_.data() + used_, p, n);
-    used_ += n;
+    while (n > 0) {
+      const std::size_t take = std::min(n, kBuffer - used_);
+      std::memcpy(buf_ + used_, c, take);
+      used_ += take;
+      c += take;
+      n -= take;
+      if (used_ == kBuffer) flush();
+    }
   }
   // Overwrites bytes already appended (the NPY header once the row count is known).
   void patch(std::size_t offset, const void* p, std::size_t n) {
     flush();
+    buffered();
     const char* c = static_cast<const char*>(p);
     while (n > 0) {
       const ssize_t w = ::pwrite(fd_, c, n, static_cast<off_t>(offset));
@@ -77,9 +104,49 @@ class OutputFile {
   }
 
  private:
+  // Everything buffered: with O_DIRECT its whole blocks (all of a full buffer) go straight to
+  // the disk, and the partial block left at the end through the page cache.
   void flush() {
-    writeAll(buf_.data(), used_);
+    std::size_t n = used_;
+    const char* p = buf_;
+    if (direct_) {
+      const std::size_t whole = n / kAlign * kAlign;
+      const std::size_t done = writeDirect(p, whole);
+      p += done;
+      n -= done;
+      if (n > 0) buffered();
+    }
+    writeAll(p, n);
     used_ = 0;
+  }
+  // Whole blocks with O_DIRECT; returns how much was written before the filesystem declined
+  // (EINVAL: no O_DIRECT here) or wrote short (a size limit, a full disk), after which this file
+  // writes through the page cache, where the error, if any, is reported.
+  std::size_t writeDirect(const char* p, std::size_t n) {
+    std::size_t done = 0;
+    while (direct_ && done < n) {
+      const ssize_t w = ::write(fd_, p + done, n - done);
+      if (w < 0 && errno == EINTR) continue;
+      if (w < 0 && errno != EINVAL) fail(errno);
+      if (w <= 0 || static_cast<std::size_t>(w) % kAlign != 0) buffered();
+      if (w > 0) done += static_cast<std::size_t>(w);
+    }
+    return done;
+  }
+  // ext4, XFS and btrfs on a local disk: there O_DIRECT streams at the disk's speed. A network
+  // filesystem would make every direct write a synchronous round trip, so the rest stay buffered.
+  static bool onLocalDisk(int fd) {
+    struct statfs fs {};
+    if (::fstatfs(fd, &fs) != 0) return false;
+    constexpr long kExt4 = 0xEF53, kXfs = 0x58465342, kBtrfs = 0x9123683E;
+    const long type = static_cast<long>(fs.f_type);
+    return type == kExt4 || type == kXfs || type == kBtrfs;
+  }
+  void buffered() {
+    if (!direct_) return;
+    direct_ = false;
+    const int flags = ::fcntl(fd_, F_GETFL);
+    if (flags < 0 || ::fcntl(fd_, F_SETFL, flags & ~O_DIRECT) != 0) fail(errno);
   }
   void writeAll(const char* p, std::size_t n) {
     while (n > 0) {
@@ -99,7 +166,8 @@ class OutputFile {
   std::string userPath_;
   int fd_ = -1;
   bool owns_ = true;
-  std::vector<char> buf_;
+  bool direct_ = false;
+  char* buf_ = nullptr;
   std::size_t used_ = 0;
 };
 
@@ -161,7 +229,7 @@ ResultWriter::ResultWriter(const std::string& path, const std::string& format, b
       impl_->tmp = toFile ? detail::createTemporary(impl_->target.path, path) : detail::createSpool(path);
       const int fd = ::open(impl_->tmp.c_str(), O_WRONLY | O_TRUNC | O_CLOEXEC);
       if (fd < 0) throw Error("cannot write '" + printable(path, 300) + "': " + std::strerror(errno));
-      impl_->file = std::make_unique<OutputFile>(fd, true, path);
+      impl_->file = std::make_unique<OutputFile>(fd, true, path, toFile && impl_->npy);
     } else {
       const int fd = detail::openStream(impl_->target, path);
       impl_->file = std::make_unique<OutputFile>(fd, impl_->target.kind == detail::OutputKind::Stream, path);
