@@ -5,6 +5,8 @@
 
 #include <chrono>
 #include <cstdlib>
+#include <filesystem>
+#include <fstream>
 #include <map>
 #include <regex>
 #include <string>
@@ -12,6 +14,7 @@
 #include "brdfcl/error.hpp"
 #include "brdfcl/evaluator.hpp"
 #include "brdfcl/runtime.hpp"
+#include "process.hpp"
 #include "support.hpp"
 
 using namespace brdfcl;
@@ -128,4 +131,43 @@ TEST(Runtime, BatchReportsItsLaunchTime) {
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   EXPECT_GT(batch.lastKernelSeconds(), 0.0);
   EXPECT_LE(batch.lastKernelSeconds(), wall);
+}
+
+// Programs go to brdfcl's disk cache as binaries. A fresh Runtime builds from them and computes
+// the same bits; a damaged binary is rebuilt from source (and stored again).
+TEST(Runtime, ProgramBinariesComeBackFromTheDiskCache) {
+  test::ScratchDir dir("binaries");
+  const char* old = std::getenv("XDG_CACHE_HOME");
+  const std::string saved = old ? old : "";
+  ::setenv("XDG_CACHE_HOME", dir.dir().c_str(), 1);
+  std::mt19937_64 rng(test::seed() + 13);
+  const std::vector<MaterialParams> materials = {test::randomMaterial(rng), test::randomMaterial(rng)};
+  const Samples s = test::randomSamples(rng, 1000, 2);
+  const auto evaluate = [&](Runtime& rt) { return Evaluator(rt, EvalOptions{}).evaluate(materials, s); };
+  const auto binaries = [&] {
+    std::vector<std::filesystem::path> found;
+    for (const auto& e : std::filesystem::directory_iterator(dir.path("brdfcl")))
+      if (e.path().filename().string().rfind("program_", 0) == 0) found.push_back(e.path());
+    return found;
+  };
+  Runtime first;
+  const std::vector<float> want = evaluate(first);
+  EXPECT_EQ(first.programsFromDiskCache(), 0u);
+  ASSERT_FALSE(binaries().empty());
+
+  Runtime second;
+  EXPECT_EQ(evaluate(second), want);
+  EXPECT_GT(second.programsFromDiskCache(), 0u);
+
+  for (const auto& p : binaries()) std::ofstream(p, std::ios::binary) << "not a program";
+  Runtime third;
+  EXPECT_EQ(evaluate(third), want);
+  EXPECT_EQ(third.programsFromDiskCache(), 0u);
+  // The eval program was rebuilt and stored again (the bake's is not needed: its table is cached).
+  std::size_t restored = 0;
+  for (const auto& p : binaries()) restored += std::filesystem::file_size(p) > 100;
+  EXPECT_GE(restored, 1u);
+
+  if (old) ::setenv("XDG_CACHE_HOME", saved.c_str(), 1);
+  else ::unsetenv("XDG_CACHE_HOME");
 }

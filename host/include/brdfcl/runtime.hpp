@@ -2,6 +2,7 @@
 // program cache keyed by (device, build options, source). Every failing OpenCL call throws
 // brdfcl::Error naming the call and its error code; a build failure carries the build log.
 #pragma once
+#include <atomic>
 #include <CL/opencl.hpp>
 
 #include <cstdint>
@@ -59,6 +60,8 @@ class Runtime {
   // Builds (or returns from the cache) the program for an embedded kernel file, e.g. "eval.cl",
   // with its #include "..." lines resolved from kernels/. `defines` are extra -D options.
   cl::Program program(const std::string& kernelFile, const std::string& defines = "");
+  // Programs this Runtime built from binaries in brdfcl's disk cache rather than from source.
+  std::size_t programsFromDiskCache() const { return fromDisk_; }
 
   // The -cl-std option picked from the device's OpenCL C version.
   const std::string& standardOption() const { return clStd_; }
@@ -72,6 +75,7 @@ class Runtime {
   std::string mathOptions_;  // -cl-fp32-correctly-rounded-divide-sqrt where the device offers it
   std::mutex cacheMutex_;
   std::map<std::pair<std::string, std::string>, cl::Program> cache_;  // (options, source) -> program
+  std::atomic<std::size_t> fromDisk_{0};
 };
 
 // How the batch kernels (eval.cl) lay work on a device: samples per work-item (BRDFCL_W) and

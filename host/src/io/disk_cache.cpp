@@ -1,10 +1,11 @@
-// The on-disk table cache shared by the sheen albedo bake and the environment preparation.
-// Files are raw little-endian float32 whose length is checked on load, so a truncated or
-// foreign file is recomputed, never trusted.
+// The on-disk cache shared by the sheen albedo bake, the environment preparation and the program
+// binaries. Tables are raw little-endian float32 whose length is checked on load, and a binary the
+// device rejects is rebuilt from source, so a truncated or foreign file is recomputed, never trusted.
 #include "io/disk_cache.hpp"
 
 #include <cstdlib>
 #include <fstream>
+#include <iterator>
 
 #include "brdfcl/error.hpp"
 #include "brdfcl/io.hpp"
@@ -38,18 +39,35 @@ bool loadCachedFloats(const std::string& name, std::vector<float>& out) {
          in.peek() == std::char_traits<char>::eof();
 }
 
-void storeCachedFloats(const std::string& name, const std::vector<float>& values) {
+namespace {
+void storeCached(const std::string& name, const char* data, std::size_t size) {
   const auto dir = cacheDirectory();
   if (dir.empty()) return;
   try {
     std::filesystem::create_directories(dir);
     writeAtomically((dir / name).string(), [&](const std::string& tmp) {
       std::ofstream out(tmp, std::ios::binary);
-      out.write(reinterpret_cast<const char*>(values.data()), std::streamsize(values.size() * sizeof(float)));
+      out.write(data, std::streamsize(size));
       if (!out.flush()) throw Error("cannot write " + tmp);
     });
   } catch (const std::exception&) {
   }
+}
+}  // namespace
+
+void storeCachedFloats(const std::string& name, const std::vector<float>& values) {
+  storeCached(name, reinterpret_cast<const char*>(values.data()), values.size() * sizeof(float));
+}
+
+std::vector<unsigned char> loadCachedBytes(const std::string& name) {
+  const auto dir = cacheDirectory();
+  if (dir.empty()) return {};
+  std::ifstream in(dir / name, std::ios::binary);
+  return std::vector<unsigned char>(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+void storeCachedBytes(const std::string& name, const std::vector<unsigned char>& bytes) {
+  storeCached(name, reinterpret_cast<const char*>(bytes.data()), bytes.size());
 }
 
 }  // namespace brdfcl::detail

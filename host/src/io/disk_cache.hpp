@@ -1,5 +1,5 @@
-// brdfcl's on-disk cache of baked tables ($XDG_CACHE_HOME/brdfcl or ~/.cache/brdfcl): float
-// arrays under names whose hash covers everything that made them, written atomically.
+// brdfcl's on-disk cache ($XDG_CACHE_HOME/brdfcl or ~/.cache/brdfcl): baked float tables and
+// program binaries under names whose hash covers everything that made them, written atomically.
 #pragma once
 #include <cstddef>
 #include <cstdint>
@@ -16,6 +16,11 @@ std::filesystem::path cacheDirectory();
 // 64-bit FNV-1a, continued from `seed`: a content key, not a checksum against tampering.
 std::uint64_t contentHash(std::string_view bytes, std::uint64_t seed = 0xcbf29ce484222325ull);
 std::uint64_t contentHash(const std::vector<float>& values, std::uint64_t seed = 0xcbf29ce484222325ull);
+
+// The whole file `name`, or empty when the cache does not hold it.
+std::vector<unsigned char> loadCachedBytes(const std::string& name);
+// Stores `bytes` as `name`; as storeCachedFloats, failures are silent.
+void storeCachedBytes(const std::string& name, const std::vector<unsigned char>& bytes);
 
 // True, with `out` filled, when the cache holds `name` with exactly out.size() floats.
 bool loadCachedFloats(const std::string& name, std::vector<float>& out);

@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 
 #include "brdfcl/error.hpp"
+#include "io/disk_cache.hpp"
 
 namespace brdfcl {
 namespace detail {
@@ -221,12 +222,38 @@ cl::Program Runtime::program(const std::string& kernelFile, const std::string& d
   std::lock_guard<std::mutex> lock(cacheMutex_);
   auto key = std::make_pair(options, source);
   if (auto it = cache_.find(key); it != cache_.end()) return it->second;
+  // A binary this device built before, from brdfcl's disk cache: PoCL's own cache still
+  // preprocesses the source (its opencl-c.h included) on every process start to find its entry,
+  // about 17 ms a program. The name's hash covers the source, the options and the device and
+  // driver versions; a binary the device refuses is rebuilt from source.
+  const std::string binaryName = fmt::format(
+      "program_{:016x}.bin",
+      detail::contentHash(source, detail::contentHash(options + '\n' + info_.name + '\n' + info_.platform + '\n' +
+                                                      device_.getInfo<CL_DEVICE_VERSION>() + '\n' +
+                                                      device_.getInfo<CL_DRIVER_VERSION>())));
   cl::Program program;
-  try {
-    program = cl::Program(context_, source);
-    program.build(std::vector<cl::Device>{device_}, options.c_str());
-  } catch (const cl::Error&) {
-    rethrowOpenCL(fmt::format("building {} with '{}'", kernelFile, options));
+  if (auto binary = detail::loadCachedBytes(binaryName); !binary.empty()) {
+    try {
+      program = cl::Program(context_, std::vector<cl::Device>{device_}, cl::Program::Binaries{std::move(binary)});
+      program.build(std::vector<cl::Device>{device_}, options.c_str());
+      ++fromDisk_;
+    } catch (const cl::Error&) {
+      program = cl::Program();
+    }
+  }
+  if (program() == nullptr) {
+    try {
+      program = cl::Program(context_, source);
+      program.build(std::vector<cl::Device>{device_}, options.c_str());
+    } catch (const cl::Error&) {
+      rethrowOpenCL(fmt::format("building {} with '{}'", kernelFile, options));
+    }
+    try {
+      const auto binaries = program.getInfo<CL_PROGRAM_BINARIES>();
+      if (binaries.size() == 1 && !binaries[0].empty()) detail::storeCachedBytes(binaryName, binaries[0]);
+    } catch (const cl::Error&) {
+      // A device that cannot hand out its binary just builds from source next time.
+    }
   }
   cache_.emplace(std::move(key), program);
   return program;
