@@ -171,3 +171,38 @@ TEST(Runtime, ProgramBinariesComeBackFromTheDiskCache) {
   if (old) ::setenv("XDG_CACHE_HOME", saved.c_str(), 1);
   else ::unsetenv("XDG_CACHE_HOME");
 }
+
+// The binaries are pruned to the most recently used 256 when a new one is stored.
+TEST(Runtime, ProgramBinaryCacheKeepsTheMostRecentlyUsed) {
+  test::ScratchDir dir("binaries-pruned");
+  const char* old = std::getenv("XDG_CACHE_HOME");
+  const std::string saved = old ? old : "";
+  ::setenv("XDG_CACHE_HOME", dir.dir().c_str(), 1);
+  const auto cache = std::filesystem::path(dir.path("brdfcl"));
+  std::filesystem::create_directories(cache);
+  const auto now = std::filesystem::file_time_type::clock::now();
+  for (int i = 0; i < 300; ++i) {
+    const auto p = cache / ("program_old_" + std::to_string(i) + ".bin");
+    std::ofstream(p) << "old";
+    std::filesystem::last_write_time(p, now - std::chrono::hours(1000 - i));
+  }
+  std::ofstream(cache / "sheen_e_kept.f32") << "a table, not a program";
+  std::mt19937_64 rng(test::seed() + 17);
+  const std::vector<MaterialParams> materials = {test::randomMaterial(rng)};
+  Runtime rt;
+  Evaluator(rt, EvalOptions{}).evaluate(materials, test::randomSamples(rng, 100, 1));
+  std::size_t programs = 0, fresh = 0;
+  for (const auto& e : std::filesystem::directory_iterator(cache)) {
+    const std::string name = e.path().filename().string();
+    if (name.rfind("program_", 0) != 0) continue;
+    ++programs;
+    fresh += name.rfind("program_old_", 0) != 0;
+  }
+  EXPECT_EQ(programs, 256u);
+  EXPECT_GE(fresh, 1u);
+  EXPECT_FALSE(std::filesystem::exists(cache / "program_old_0.bin"));
+  EXPECT_TRUE(std::filesystem::exists(cache / "program_old_299.bin"));
+  EXPECT_TRUE(std::filesystem::exists(cache / "sheen_e_kept.f32"));
+  if (old) ::setenv("XDG_CACHE_HOME", saved.c_str(), 1);
+  else ::unsetenv("XDG_CACHE_HOME");
+}

@@ -3,6 +3,7 @@
 // device rejects is rebuilt from source, so a truncated or foreign file is recomputed, never trusted.
 #include "io/disk_cache.hpp"
 
+#include <algorithm>
 #include <cstdlib>
 #include <fstream>
 #include <iterator>
@@ -63,7 +64,28 @@ std::vector<unsigned char> loadCachedBytes(const std::string& name) {
   const auto dir = cacheDirectory();
   if (dir.empty()) return {};
   std::ifstream in(dir / name, std::ios::binary);
-  return std::vector<unsigned char>(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  std::vector<unsigned char> bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  if (!bytes.empty()) {
+    std::error_code ec;
+    std::filesystem::last_write_time(dir / name, std::filesystem::file_time_type::clock::now(), ec);
+  }
+  return bytes;
+}
+
+void pruneCached(const std::string& prefix, std::size_t keep) {
+  const auto dir = cacheDirectory();
+  if (dir.empty()) return;
+  std::vector<std::pair<std::filesystem::file_time_type, std::filesystem::path>> files;
+  std::error_code ec;
+  for (const auto& e : std::filesystem::directory_iterator(dir, ec)) {
+    if (e.path().filename().string().rfind(prefix, 0) != 0) continue;
+    std::error_code tc;
+    const auto t = e.last_write_time(tc);
+    if (!tc) files.emplace_back(t, e.path());
+  }
+  if (files.size() <= keep) return;
+  std::sort(files.begin(), files.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+  for (std::size_t i = keep; i < files.size(); ++i) std::filesystem::remove(files[i].second, ec);
 }
 
 void storeCachedBytes(const std::string& name, const std::vector<unsigned char>& bytes) {

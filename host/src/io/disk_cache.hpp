@@ -17,10 +17,13 @@ std::filesystem::path cacheDirectory();
 std::uint64_t contentHash(std::string_view bytes, std::uint64_t seed = 0xcbf29ce484222325ull);
 std::uint64_t contentHash(const std::vector<float>& values, std::uint64_t seed = 0xcbf29ce484222325ull);
 
-// The whole file `name`, or empty when the cache does not hold it.
+// The whole file `name`, or empty when the cache does not hold it. A hit marks the file as used
+// (its modification time), for pruneCached.
 std::vector<unsigned char> loadCachedBytes(const std::string& name);
 // Stores `bytes` as `name`; as storeCachedFloats, failures are silent.
 void storeCachedBytes(const std::string& name, const std::vector<unsigned char>& bytes);
+// Keeps the `keep` most recently used files whose names start with `prefix`, removing the rest.
+void pruneCached(const std::string& prefix, std::size_t keep);
 
 // True, with `out` filled, when the cache holds `name` with exactly out.size() floats.
 bool loadCachedFloats(const std::string& name, std::vector<float>& out);

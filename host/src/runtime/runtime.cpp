@@ -214,6 +214,11 @@ Runtime::Runtime(const std::string& selectorArg) {
   }
 }
 
+namespace {
+// About 130 MB of binaries at PoCL's sizes; the whole test suite builds some 210 variants.
+constexpr std::size_t kCachedPrograms = 256;
+}  // namespace
+
 cl::Program Runtime::program(const std::string& kernelFile, const std::string& defines) {
   std::string source = kernelSource(kernelFile);
   // -w: PoCL prints clang warnings (e.g. the float16 ABI note on AVX2) to stderr; real
@@ -250,7 +255,11 @@ cl::Program Runtime::program(const std::string& kernelFile, const std::string& d
     }
     try {
       const auto binaries = program.getInfo<CL_PROGRAM_BINARIES>();
-      if (binaries.size() == 1 && !binaries[0].empty()) detail::storeCachedBytes(binaryName, binaries[0]);
+      if (binaries.size() == 1 && !binaries[0].empty()) {
+        detail::storeCachedBytes(binaryName, binaries[0]);
+        // Every kernel change and option set makes a new entry: keep the most recently used.
+        detail::pruneCached("program_", kCachedPrograms);
+      }
     } catch (const cl::Error&) {
       // A device that cannot hand out its binary just builds from source next time.
     }
