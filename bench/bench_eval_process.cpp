@@ -61,10 +61,7 @@ struct Files {
         f.write(line, len);
       }
     } else {
-      std::string dict = "{'descr': '<f4', 'fortran_order': False, 'shape': (" + std::to_string(n) + ", 7), }";
-      dict.append(63 - (10 + dict.size()) % 64, ' ');
-      dict += '\n';
-      f << std::string("\x93NUMPY\x01\x00", 8) << char(dict.size() & 0xff) << char(dict.size() >> 8) << dict;
+      f << brdfcl::bench::npyFloatHeader(std::size_t(n), 7);
       std::vector<float> rows(7 * (std::size_t(1) << 16));
       for (std::size_t first = 0; first < n; first += rows.size() / 7) {
         const std::size_t count = std::min(rows.size() / 7, n - first);

@@ -156,10 +156,7 @@ void BM_EvalFile(benchmark::State& state, FileMode mode) {
     if (csv) {
       f << "material,Lx,Ly,Lz,Vx,Vy,Vz\n";
     } else {
-      std::string dict = "{'descr': '<f4', 'fortran_order': False, 'shape': (" + std::to_string(n) + ", 7), }";
-      dict.append(63 - (10 + dict.size()) % 64, ' ');
-      dict += '\n';
-      f << std::string("\x93NUMPY\x01\x00", 8) << char(dict.size() & 0xff) << char(dict.size() >> 8) << dict;
+      f << bench::npyFloatHeader(std::size_t(n), 7);
     }
     std::mt19937 rng(1);
     std::uniform_real_distribution<float> u(-1.0f, 1.0f);

@@ -14,6 +14,7 @@
 #include "brdfcl/error.hpp"
 #include "brdfcl/evaluator.hpp"
 #include "brdfcl/runtime.hpp"
+#include "host/src/io/disk_cache.hpp"
 #include "process.hpp"
 #include "support.hpp"
 
@@ -22,6 +23,27 @@ using namespace brdfcl;
 namespace brdfcl::detail {
 const std::map<std::string, std::string>& embeddedKernels();
 }
+
+namespace {
+// brdfcl's disk cache moved under a scratch directory for one test, and put back after it.
+class ScratchCacheHome {
+ public:
+  explicit ScratchCacheHome(const test::ScratchDir& dir) : had_(std::getenv("XDG_CACHE_HOME") != nullptr) {
+    if (had_) saved_ = std::getenv("XDG_CACHE_HOME");
+    ::setenv("XDG_CACHE_HOME", dir.dir().c_str(), 1);
+  }
+  ~ScratchCacheHome() {
+    if (had_) ::setenv("XDG_CACHE_HOME", saved_.c_str(), 1);
+    else ::unsetenv("XDG_CACHE_HOME");
+  }
+  ScratchCacheHome(const ScratchCacheHome&) = delete;
+  ScratchCacheHome& operator=(const ScratchCacheHome&) = delete;
+
+ private:
+  bool had_;
+  std::string saved_;
+};
+}  // namespace
 
 TEST(Runtime, ListsAtLeastOneDevice) {
   auto devices = listDevices();
@@ -81,12 +103,16 @@ TEST(Runtime, KernelsDefineNoVariadicMacros) {
   const std::regex variadic(R"(#[ \t]*define[ \t]+\w+\([^)]*\.\.\.)");
   const auto& files = detail::embeddedKernels();
   ASSERT_GT(files.size(), 10u);
+  // Continued lines joined first, so that a parameter list broken across lines is seen whole.
+  const auto joined = [](const std::string& text) { return std::regex_replace(text, std::regex(R"(\\\r?\n)"), " "); };
   for (const auto& [name, text] : files) {
     std::smatch m;
-    EXPECT_FALSE(std::regex_search(text, m, variadic)) << name << " defines a variadic macro: " << m.str();
+    const std::string whole = joined(text);
+    EXPECT_FALSE(std::regex_search(whole, m, variadic)) << name << " defines a variadic macro: " << m.str();
   }
-  // The check itself finds one.
-  EXPECT_TRUE(std::regex_search(std::string("#define LIST(F, ...) F(__VA_ARGS__)"), variadic));
+  // The check itself finds one, on one line and continued.
+  EXPECT_TRUE(std::regex_search(joined("#define LIST(F, ...) F(__VA_ARGS__)"), variadic));
+  EXPECT_TRUE(std::regex_search(joined("#define LIST(F, \\\n   ...) F(__VA_ARGS__)"), variadic));
 }
 
 TEST(Runtime, ProgramCacheReturnsTheSameProgram) {
@@ -137,9 +163,7 @@ TEST(Runtime, BatchReportsItsLaunchTime) {
 // the same bits; a damaged binary is rebuilt from source (and stored again).
 TEST(Runtime, ProgramBinariesComeBackFromTheDiskCache) {
   test::ScratchDir dir("binaries");
-  const char* old = std::getenv("XDG_CACHE_HOME");
-  const std::string saved = old ? old : "";
-  ::setenv("XDG_CACHE_HOME", dir.dir().c_str(), 1);
+  ScratchCacheHome home(dir);
   std::mt19937_64 rng(test::seed() + 13);
   const std::vector<MaterialParams> materials = {test::randomMaterial(rng), test::randomMaterial(rng)};
   const Samples s = test::randomSamples(rng, 1000, 2);
@@ -168,16 +192,12 @@ TEST(Runtime, ProgramBinariesComeBackFromTheDiskCache) {
   for (const auto& p : binaries()) restored += std::filesystem::file_size(p) > 100;
   EXPECT_GE(restored, 1u);
 
-  if (old) ::setenv("XDG_CACHE_HOME", saved.c_str(), 1);
-  else ::unsetenv("XDG_CACHE_HOME");
 }
 
 // The binaries are pruned to the most recently used 256 when a new one is stored.
 TEST(Runtime, ProgramBinaryCacheKeepsTheMostRecentlyUsed) {
   test::ScratchDir dir("binaries-pruned");
-  const char* old = std::getenv("XDG_CACHE_HOME");
-  const std::string saved = old ? old : "";
-  ::setenv("XDG_CACHE_HOME", dir.dir().c_str(), 1);
+  ScratchCacheHome home(dir);
   const auto cache = std::filesystem::path(dir.path("brdfcl"));
   std::filesystem::create_directories(cache);
   const auto now = std::filesystem::file_time_type::clock::now();
@@ -203,6 +223,21 @@ TEST(Runtime, ProgramBinaryCacheKeepsTheMostRecentlyUsed) {
   EXPECT_FALSE(std::filesystem::exists(cache / "program_old_0.bin"));
   EXPECT_TRUE(std::filesystem::exists(cache / "program_old_299.bin"));
   EXPECT_TRUE(std::filesystem::exists(cache / "sheen_e_kept.f32"));
-  if (old) ::setenv("XDG_CACHE_HOME", saved.c_str(), 1);
-  else ::unsetenv("XDG_CACHE_HOME");
+}
+
+// A hit moves an hour-old mark to now and leaves a recent one alone, so warm starts write no metadata.
+TEST(Runtime, CacheHitsMarkUseAtMostHourly) {
+  test::ScratchDir dir("binaries-marked");
+  ScratchCacheHome home(dir);
+  detail::storeCachedBytes("program_mark.bin", {1, 2, 3});
+  const auto file = detail::cacheDirectory() / "program_mark.bin";
+  ASSERT_TRUE(std::filesystem::exists(file));
+  const auto now = std::filesystem::file_time_type::clock::now();
+  const auto recent = now - std::chrono::minutes(10), stale = now - std::chrono::hours(3);
+  std::filesystem::last_write_time(file, recent);
+  EXPECT_EQ(detail::loadCachedBytes("program_mark.bin").size(), 3u);
+  EXPECT_EQ(std::filesystem::last_write_time(file), recent);
+  std::filesystem::last_write_time(file, stale);
+  EXPECT_EQ(detail::loadCachedBytes("program_mark.bin").size(), 3u);
+  EXPECT_GT(std::filesystem::last_write_time(file), now - std::chrono::minutes(1));
 }

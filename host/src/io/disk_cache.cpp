@@ -66,8 +66,12 @@ std::vector<unsigned char> loadCachedBytes(const std::string& name) {
   std::ifstream in(dir / name, std::ios::binary);
   std::vector<unsigned char> bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
   if (!bytes.empty()) {
+    // Marked at most once an hour: a use order to the hour is all pruning needs, and a process
+    // start then costs no metadata write per program.
     std::error_code ec;
-    std::filesystem::last_write_time(dir / name, std::filesystem::file_time_type::clock::now(), ec);
+    const auto now = std::filesystem::file_time_type::clock::now();
+    const auto marked = std::filesystem::last_write_time(dir / name, ec);
+    if (!ec && now - marked > kUseMarkInterval) std::filesystem::last_write_time(dir / name, now, ec);
   }
   return bytes;
 }

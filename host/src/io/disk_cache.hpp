@@ -1,6 +1,7 @@
 // brdfcl's on-disk cache ($XDG_CACHE_HOME/brdfcl or ~/.cache/brdfcl): baked float tables and
 // program binaries under names whose hash covers everything that made them, written atomically.
 #pragma once
+#include <chrono>
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
@@ -18,7 +19,8 @@ std::uint64_t contentHash(std::string_view bytes, std::uint64_t seed = 0xcbf29ce
 std::uint64_t contentHash(const std::vector<float>& values, std::uint64_t seed = 0xcbf29ce484222325ull);
 
 // The whole file `name`, or empty when the cache does not hold it. A hit marks the file as used
-// (its modification time), for pruneCached.
+// (its modification time, moved to now when older than kUseMarkInterval), for pruneCached.
+constexpr std::chrono::hours kUseMarkInterval{1};
 std::vector<unsigned char> loadCachedBytes(const std::string& name);
 // Stores `bytes` as `name`; as storeCachedFloats, failures are silent.
 void storeCachedBytes(const std::string& name, const std::vector<unsigned char>& bytes);
