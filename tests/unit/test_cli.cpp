@@ -30,6 +30,7 @@
 #include <thread>
 #include <vector>
 
+#include "npy.hpp"
 #include "process.hpp"
 #include "support.hpp"
 
@@ -116,30 +117,6 @@ std::string samplesCsv(const std::vector<Sample>& samples, bool withMaterial = t
   return t;
 }
 
-// NPY v1.0 of a row-major (rows, cols) array.
-std::string npy(const std::vector<double>& values, std::size_t cols, bool float32) {
-  const std::size_t rows = values.size() / cols;
-  std::string header = std::string("{'descr': '") + (float32 ? "<f4" : "<f8") + "', 'fortran_order': False, 'shape': (" +
-                       std::to_string(rows) + ", " + std::to_string(cols) + "), }";
-  header.append((10 + header.size() + 1 + 63) / 64 * 64 - 10 - header.size() - 1, ' ');
-  header += '\n';
-  std::string out = "\x93NUMPY";
-  out += '\x01';
-  out += '\x00';
-  out += static_cast<char>(header.size() & 0xff);
-  out += static_cast<char>(header.size() >> 8);
-  out += header;
-  for (double v : values) {
-    if (float32) {
-      const float f = static_cast<float>(v);
-      out.append(reinterpret_cast<const char*>(&f), sizeof f);
-    } else {
-      out.append(reinterpret_cast<const char*>(&v), sizeof v);
-    }
-  }
-  return out;
-}
-
 std::string samplesNpy(const std::vector<Sample>& samples, bool float32, bool withMaterial = true) {
   std::vector<double> v;
   for (const auto& s : samples) {
@@ -147,7 +124,7 @@ std::string samplesNpy(const std::vector<Sample>& samples, bool float32, bool wi
     v.insert(v.end(), s.L.begin(), s.L.end());
     v.insert(v.end(), s.V.begin(), s.V.end());
   }
-  return npy(v, withMaterial ? 7 : 6, float32);
+  return brdfcl::test::npyArray(v, withMaterial ? 7 : 6, float32);
 }
 
 // The glTF document and the parameters it must produce. Only the draft material leaves keys to
@@ -612,7 +589,7 @@ std::string npyWithRow(const std::vector<double>& row, std::size_t at, bool floa
     const auto& r = i == at ? row : good;
     v.insert(v.end(), r.begin(), r.end());
   }
-  return npy(v, 7, float32);
+  return brdfcl::test::npyArray(v, 7, float32);
 }
 
 std::string gltfWith(const std::string& secondMaterial) {
@@ -686,9 +663,9 @@ TEST_F(Cli, BadInputIsOneLineErrorAndLeavesNoOutput) {
        "idx.npy", "o.csv", {}, {"idx.npy", "row 1"}},
       {"NPY zero-length V", {{"zv.npy", npyWithRow({0, 0.25, 0.5, 1, 0, 0, 0}, 0, true)}}, "m.json", "zv.npy", "o.csv",
        {}, {"zv.npy", "row 0"}},
-      {"NPY wrong shape", {{"shape.npy", npy(std::vector<double>(10, 0.5), 5, true)}}, "m.json", "shape.npy", "o.csv",
+      {"NPY wrong shape", {{"shape.npy", brdfcl::test::npyArray(std::vector<double>(10, 0.5), 5, true)}}, "m.json", "shape.npy", "o.csv",
        {}, {"shape.npy", "shape"}},
-      {"NPY (N,6) without --grid", {{"six.npy", npy(std::vector<double>(12, 0.5), 6, true)}}, "m.json", "six.npy",
+      {"NPY (N,6) without --grid", {{"six.npy", brdfcl::test::npyArray(std::vector<double>(12, 0.5), 6, true)}}, "m.json", "six.npy",
        "o.csv", {}, {"six.npy", "shape"}},
       {"NPY truncated", {{"cut.npy", npyWithRow({0, 0.25, 0.5, 1, 0, 0.125, 1}, 0, false).substr(0, 200)}}, "m.json",
        "cut.npy", "o.csv", {}, {"cut.npy"}},

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "brdfcl/io.hpp"
+#include "npy.hpp"
 #include "process.hpp"
 
 namespace brdfcl::test {
@@ -31,13 +32,7 @@ std::string readAll(const std::string& p) {
 
 // What numpy.save writes for float32 (rows, 3): written out here, not by the writer under test.
 std::string expectedNpy(const std::vector<float>& rgb) {
-  std::string dict = "{'descr': '<f4', 'fortran_order': False, 'shape': (" + std::to_string(rgb.size() / 3) + ", 3), }";
-  dict.append(128 - 10 - dict.size() - 1, ' ');
-  dict += '\n';
-  std::string out("\x93NUMPY\x01\x00", 8);
-  out += char(dict.size() & 0xff);
-  out += char(dict.size() >> 8);
-  out += dict;
+  std::string out = npyHeader(rgb.size() / 3, 3);
   out.append(reinterpret_cast<const char*>(rgb.data()), rgb.size() * sizeof(float));
   return out;
 }

@@ -32,6 +32,7 @@
 #include <thread>
 #include <vector>
 
+#include "npy.hpp"
 #include "process.hpp"
 #include "support.hpp"
 #include "brdfcl/error.hpp"
@@ -282,13 +283,8 @@ TEST_F(Errors, DraftSheenKeys) {
 }
 
 // NPY v1.0 with a hand-written header (padded as numpy pads it) and 7 float64 zeros per row.
-std::string npyWithHeader(std::string header, std::size_t dataRows = 1) {
-  header.append(63 - (10 + header.size()) % 64, ' ');
-  header += '\n';
-  std::string out("\x93NUMPY\x01\x00", 8);
-  out += char(header.size() & 0xff);
-  out += char(header.size() >> 8);
-  return out + header + std::string(dataRows * 7 * 8, '\0');
+std::string npyWithHeader(const std::string& header, std::size_t dataRows = 1) {
+  return brdfcl::test::npyWithDict(header) + std::string(dataRows * 7 * 8, '\0');
 }
 
 TEST_F(Errors, NpyHeaderSyntax) {

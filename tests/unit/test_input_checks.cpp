@@ -18,6 +18,7 @@
 #include "brdfcl/gltf.hpp"
 #include "brdfcl/io.hpp"
 #include "gltf_builder.hpp"
+#include "npy.hpp"
 #include "process.hpp"
 #include "support.hpp"
 
@@ -76,19 +77,6 @@ std::vector<std::string> warningsOf(const std::string& text, bool strict = false
 
 void writeFile(const std::string& path, const std::string& bytes) {
   std::ofstream(path, std::ios::binary).write(bytes.data(), std::streamsize(bytes.size()));
-}
-
-std::string npyF64(const std::vector<double>& v, std::size_t cols) {
-  std::string header = "{'descr': '<f8', 'fortran_order': False, 'shape': (" + std::to_string(v.size() / cols) + ", " +
-                       std::to_string(cols) + "), }";
-  while ((10 + header.size() + 1) % 64 != 0) header += ' ';
-  header += '\n';
-  std::string out("\x93NUMPY\x01\x00", 8);
-  out += char(header.size() & 255);
-  out += char(header.size() >> 8);
-  out += header;
-  out.append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(double));
-  return out;
 }
 
 // Rows material, L, V with directions exact in float (multiples of 1/8).
@@ -419,7 +407,7 @@ TEST(IoSamplesInput, NoMaterialColumnWithoutGridSuggestsGrid) {
             dir.path("g.csv") +
                 ": header: missing column material; add it, or pass --grid to evaluate every material at each direction pair");
   std::vector<double> six = {0, 0, 1, 0, 0, 1};
-  writeFile(dir.path("g.npy"), npyF64(six, 6));
+  writeFile(dir.path("g.npy"), brdfcl::test::npyArray(six, 6, false));
   EXPECT_EQ(errorOf([&] { brdfcl::readSamples(dir.path("g.npy"), 2, false); }),
             dir.path("g.npy") + ": expected shape (N, 7) with columns material,Lx,Ly,Lz,Vx,Vy,Vz, got (1, 6); without "
                                 "the material column, pass --grid to evaluate every material at each direction pair");
@@ -489,7 +477,7 @@ TEST_F(InputChecksCli, SamplesFromStdinAsCsvOrNpy) {
                                                {"extensions": {"KHR_materials_clearcoat": {"clearcoatFactor": 1}}})"));
   const auto v = rows(1000, 2);
   const std::string c = write("s.csv", csv(v, {0, 1, 2, 3, 4, 5, 6}));
-  const std::string n = write("s.npy", npyF64(v, 7));
+  const std::string n = write("s.npy", brdfcl::test::npyArray(v, 7, false));
   ASSERT_EQ(eval(m, c, dir_.path("ref.csv")).status, 0);
   const std::string ref = brdfcl::test::slurp(dir_.path("ref.csv"));
   const std::string cli = BRDFCL_CLI_PATH;

@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "brdfcl/stream.hpp"
+#include "npy.hpp"
 #include "process.hpp"
 #include "support.hpp"
 
@@ -32,19 +33,6 @@ void writeFile(const std::string& path, const std::string& content) {
   std::ofstream out(path, std::ios::binary);
   out << content;
   if (!out) throw std::runtime_error("cannot write " + path);
-}
-
-// NPY v1.0 header of a `rows` x `cols` float array, padded as numpy pads it (to 64 bytes).
-std::string npyHeader(std::size_t rows, std::size_t cols, bool float32, bool fortran) {
-  std::string dict = std::string("{'descr': '") + (float32 ? "<f4" : "<f8") + "', 'fortran_order': " +
-                     (fortran ? "True" : "False") + ", 'shape': (" + std::to_string(rows) + ", " +
-                     std::to_string(cols) + "), }";
-  dict.append(63 - (10 + dict.size()) % 64, ' ');
-  dict += '\n';
-  std::string out("\x93NUMPY\x01\x00", 8);
-  out += static_cast<char>(dict.size() & 0xff);
-  out += static_cast<char>(dict.size() >> 8);
-  return out + dict;
 }
 
 // The file: values given row-major, stored float32 or float64, C or Fortran order.
