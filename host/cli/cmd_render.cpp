@@ -81,10 +81,13 @@ void writeImages(const Image& img, const std::string& exr, const std::string& pn
 struct GltfArgs {
   std::string path, camera, variant, size;
   int scene = -1;
-  bool strict = false;
+  bool strict = false, allowOutsideUris = false;
 
   void add(CLI::App* cmd) {
     cmd->add_option("--gltf", path, "glTF asset (.gltf or .glb) instead of a built-in scene");
+    cmd->add_flag("--allow-outside-uris", allowOutsideUris,
+                  "let the asset's URIs (and a scene file's environment path) name files outside its folder: absolute "
+                  "paths, '..' and links (docs/gltf.md)");
     cmd->add_flag("--strict", strict, "unknown keys and extensions in the glTF materials are errors, not warnings");
     cmd->add_option("--camera", camera, "glTF camera index, or auto (default: the scene's first camera node, else auto)");
     cmd->add_option("--gltf-scene", scene, "glTF scene index (default: the file's default scene)");
@@ -105,6 +108,7 @@ LoadedAsset loadAsset(const GltfArgs& a) {
   options.scene = a.scene;
   options.variant = a.variant;
   options.strict = a.strict;
+  options.allowOutsideUris = a.allowOutsideUris;
   int w = 0, h = 0;
   if (!a.size.empty()) parseSize(a.size, w, h);
   LoadedAsset l = loadFramedAsset(a.path, options, a.camera, w, h);
@@ -287,7 +291,7 @@ void addRenderCommands(CLI::App& app) {
     struct Args {
       std::string gbuffer, scene, out, png, exr, device;
       float exposure = 0.0f;
-      bool noCheck = false;
+      bool noCheck = false, allowOutsideUris = false;
       IblArgs ibl;
       ProfileArgs profile;
     };
@@ -301,6 +305,8 @@ void addRenderCommands(CLI::App& app) {
     cmd->add_option("--exposure", a->exposure, "exposure in stops for the PNG (default 0)");
     cmd->add_option("--device", a->device, "device index or name substring, or all, or a list such as 0,2 to shade row bands on several devices");
     cmd->add_flag("--no-check", a->noCheck, "skip the G-buffer's range checks (factors in [0, 1], unit normals)");
+    cmd->add_flag("--allow-outside-uris", a->allowOutsideUris,
+                  "let the scene's environment path name a file outside the scene file's folder (docs/gltf.md)");
     a->ibl.add(cmd);
     a->profile.add(cmd, false);
     cmd->callback([a, cmd] {
@@ -331,7 +337,7 @@ void addRenderCommands(CLI::App& app) {
         GBufferReadOptions readOptions;
         readOptions.check = !a->noCheck;
         const GBuffer g = readGBuffer(a->gbuffer, readOptions);
-        const Scene scene = readScene(a->scene);
+        const Scene scene = readScene(a->scene, a->allowOutsideUris);
         if (const std::string w = shadeCameraWarning(a->scene, scene, a->gbuffer, g); !w.empty())
           printWarning(w);
         checkFrameFits(FrameJob::Shade, g.width, g.height, usableHostMemory(), a->gbuffer);
@@ -410,7 +416,8 @@ void addRenderCommands(CLI::App& app) {
           if (cmd->count("--scene")) throw Error("--scene and --gltf are alternatives; give one");
           const LoadedAsset l = loadAsset(a->gltf);
           const Scene lighting =
-              gltf::frameLighting(l.asset, l.view, a->lighting.lights, environment, a->lighting.environmentGiven);
+              gltf::frameLighting(l.asset, l.view, a->lighting.lights, environment, a->lighting.environmentGiven,
+                                  a->gltf.allowOutsideUris);
           checkFrameFits(FrameJob::Render, l.width, l.height, usableHostMemory());
           shares = rowShares(l.height, shadeOptions.ibl);
           if (myShareIsEmpty(shares)) return;
@@ -426,7 +433,7 @@ void addRenderCommands(CLI::App& app) {
         if (!a->gltf.size.empty()) parseSize(a->gltf.size, w, h);
         Scene scene = builtinScene(a->scene);
         if (a->lighting.environmentGiven) scene.environment = environment;
-        gltf::applyLightsOption(scene, a->lighting.lights, a->lighting.environmentGiven);
+        gltf::applyLightsOption(scene, a->lighting.lights, a->lighting.environmentGiven, a->gltf.allowOutsideUris);
         checkFrameFits(FrameJob::Render, w, h, usableHostMemory());
         shares = rowShares(h, shadeOptions.ibl);
         if (myShareIsEmpty(shares)) return;

@@ -241,7 +241,8 @@ class Evaluator:
                env_intensity: Optional[float] = None, env_rotation: Optional[float] = None,
                lights: PathLike = "gltf", profile: str = "spec", ibl: str = "split-sum",
                ibl_samples: Optional[int] = None, gltf_scene: Optional[int] = None,
-               variant: Optional[str] = None, strict: bool = False) -> np.ndarray:
+               variant: Optional[str] = None, strict: bool = False,
+               allow_outside_uris: bool = False) -> np.ndarray:
         """A rendered image, float32 (H, W, 3) linear radiance. See brdfcl.render."""
         job = _core.RenderJob()
         if gltf is not None:
@@ -276,6 +277,7 @@ class Evaluator:
         if variant is not None:
             job.variant = str(variant)
         job.strict = bool(strict)
+        job.allow_outside_uris = bool(allow_outside_uris)
         job.set_profile(profile)
         image, warns = self._device.render(job, ibl, 1024 if ibl_samples is None else _int(ibl_samples, "ibl_samples"),
                                            ibl_samples is not None)
@@ -284,15 +286,16 @@ class Evaluator:
 
     def shade(self, gbuffer: Union[PathLike, Mapping[str, Any]], scene: Union[PathLike, Mapping[str, Any]], *,
               profile: str = "spec", ibl: str = "split-sum", ibl_samples: int = 1024,
-              check: bool = True) -> np.ndarray:
+              check: bool = True, allow_outside_uris: bool = False) -> np.ndarray:
         """Deferred shading of a G-buffer: float32 (H, W, 3) linear radiance. See brdfcl.shade."""
         g = _gbuffer(gbuffer, check)
         if isinstance(scene, Mapping):
             scene_name = "<scene>"
-            s = _core.parse_scene(json.dumps(scene, default=_json_default), scene_name, os.getcwd())
+            # The caller's own data, as trusted as a path the caller passes: not confined.
+            s = _core.parse_scene(json.dumps(scene, default=_json_default), scene_name, os.getcwd(), True)
         elif isinstance(scene, (str, os.PathLike)):
             scene_name = os.fspath(scene)
-            s = _core.read_scene(scene_name)
+            s = _core.read_scene(scene_name, bool(allow_outside_uris))
         else:
             raise Error(f"scene must be a path to a scene JSON file or a dict (docs/gbuffer.md), got {type(scene).__name__}")
         # `brdfcl shade`'s warning about which camera shades (or that neither file has one).
@@ -431,7 +434,7 @@ def render(gltf: Optional[PathLike] = None, scene: Optional[str] = None, *, size
            env_intensity: Optional[float] = None, env_rotation: Optional[float] = None, lights: PathLike = "gltf",
            profile: str = "spec", ibl: str = "split-sum", ibl_samples: Optional[int] = None,
            gltf_scene: Optional[int] = None, variant: Optional[str] = None, strict: bool = False,
-           device: Union[None, int, str, Evaluator] = None) -> np.ndarray:
+           allow_outside_uris: bool = False, device: Union[None, int, str, Evaluator] = None) -> np.ndarray:
     """Renders a glTF asset (gltf=PATH) or the built-in scene (scene="spheres", the default):
     float32 (H, W, 3) linear radiance, rows from the top, equal to `brdfcl render --out x.exr`.
 
@@ -440,19 +443,21 @@ def render(gltf: Optional[PathLike] = None, scene: Optional[str] = None, *, size
     environment: builtin|sky|studio|uniform|FILE.hdr|FILE.exr, env_intensity, env_rotation
     (radians about +Y). lights: gltf|none|SCENE.json. profile: as brdfcl.evaluate. ibl: split-sum
     or exact (Monte Carlo, ibl_samples per pixel). gltf_scene, variant, strict: as the CLI's
-    --gltf-scene, --variant, --strict. The BRDF follows the conventions of brdfcl.evaluate
+    --gltf-scene, --variant, --strict. allow_outside_uris: as --allow-outside-uris, lets the asset's
+    URIs and a lights scene's environment path name files outside their folders (docs/gltf.md,
+    "Files an asset names"). The BRDF follows the conventions of brdfcl.evaluate
     (N = +Z in each surface's frame, L towards the light, f without the cosine; the renderer
     applies N.L).
     """
     return _evaluator(device).render(gltf, scene, size=size, camera=camera, spp=spp, environment=environment,
                                      env_intensity=env_intensity, env_rotation=env_rotation, lights=lights,
                                      profile=profile, ibl=ibl, ibl_samples=ibl_samples, gltf_scene=gltf_scene,
-                                     variant=variant, strict=strict)
+                                     variant=variant, strict=strict, allow_outside_uris=allow_outside_uris)
 
 
 def shade(gbuffer: Union[PathLike, Mapping[str, Any]], scene: Union[PathLike, Mapping[str, Any]], *,
           profile: str = "spec", ibl: str = "split-sum", ibl_samples: int = 1024, check: bool = True,
-          device: Union[None, int, str, Evaluator] = None) -> np.ndarray:
+          allow_outside_uris: bool = False, device: Union[None, int, str, Evaluator] = None) -> np.ndarray:
     """Deferred shading of a G-buffer under a scene's lights and environment, as `brdfcl shade`:
     float32 (H, W, 3) linear radiance.
 
@@ -460,13 +465,16 @@ def shade(gbuffer: Union[PathLike, Mapping[str, Any]], scene: Union[PathLike, Ma
     (docs/gbuffer.md names: P, N, baseColor, metallic, roughness, mask required; (H, W, 3)
     vectors, (H, W) scalars; optional "camera"); either is range-checked as the CLI checks a file
     (factors in [0, 1], unit normals on covered pixels) unless check=False.
-    scene: a scene JSON path or the same JSON as a dict (docs/gbuffer.md, "Scene JSON").
+    scene: a scene JSON path or the same JSON as a dict (docs/gbuffer.md, "Scene JSON"). A scene
+    file's environment path stays in the file's folder unless allow_outside_uris=True; a dict's is
+    the caller's own and taken as it is (relative to the working directory).
     Warns (BrdfclWarning) as the CLI does when the scene's camera differs from the G-buffer's, or
     neither has one and the G-buffer no V.
     Conventions: world-space N per pixel, L towards the light, V towards the viewer, f without
     the cosine (the shader applies N.L).
     """
-    return _evaluator(device).shade(gbuffer, scene, profile=profile, ibl=ibl, ibl_samples=ibl_samples, check=check)
+    return _evaluator(device).shade(gbuffer, scene, profile=profile, ibl=ibl, ibl_samples=ibl_samples, check=check,
+                                    allow_outside_uris=allow_outside_uris)
 
 
 def read_gbuffer(path: PathLike, *, check: bool = True) -> Dict[str, Any]:

@@ -427,6 +427,7 @@ NB_MODULE(_core, m) {
       .def_rw("gltf_scene", &brdfcl::RenderJob::gltfScene)
       .def_rw("variant", &brdfcl::RenderJob::variant)
       .def_rw("strict", &brdfcl::RenderJob::strict)
+      .def_rw("allow_outside_uris", &brdfcl::RenderJob::allowOutsideUris)
       .def_rw("spp", &brdfcl::RenderJob::spp)
       .def_rw("spp_given", &brdfcl::RenderJob::sppGiven)
       .def_rw("environment", &brdfcl::RenderJob::environment)
@@ -467,7 +468,7 @@ NB_MODULE(_core, m) {
   }, "path"_a);
 
   nb::class_<brdfcl::Scene>(m, "Scene");
-  m.def("read_scene", &brdfcl::readScene, "path"_a);
-  m.def("parse_scene", &brdfcl::parseScene, "json"_a, "name"_a, "base_dir"_a);
+  m.def("read_scene", &brdfcl::readScene, "path"_a, "allow_outside"_a = false);
+  m.def("parse_scene", &brdfcl::parseScene, "json"_a, "name"_a, "base_dir"_a, "allow_outside"_a = false);
   m.def("spheres_scene", &brdfcl::spheresScene);
 }

@@ -350,7 +350,7 @@ std::string tinyEnvironment(const ScratchDir& dir) {
     for (int x = 0; x < 16; ++x)
       for (float v : {0.1f + 0.1f * x, 0.2f + 0.3f * y, 1.0f}) rgb.push_back(v);
   writeExrRgb(dir.path("env.exr"), 16, 8, rgb);
-  return R"("environment": {"path": ")" + dir.path("env.exr") + R"("})";
+  return R"("environment": {"path": "env.exr"})";  // beside the scene files, which are in `dir` too
 }
 
 TEST(GBufferCamera, SceneFileWithoutCameraIsTold) {

@@ -148,6 +148,10 @@ struct LoadOptions {
   // Unknown keys and KHR_/EXT_ names in materials (typos: checkMaterialKeys) are warnings in
   // Asset::warnings; strict makes the first of them the load's Error instead.
   bool strict = false;
+  // Buffer and image URIs name files inside the asset's folder (docs/gltf.md, "Files an asset
+  // names"); true also lets them name absolute paths, ".." above the folder and links, which a
+  // user who keeps textures in a sibling folder asks for. Non-regular files are refused either way.
+  bool allowOutsideUris = false;
   // Bounds against hostile files, checked before allocating (the fuzz harness lowers them): the
   // world-space vertices plus triangles of all primitives together, and the pixels of one image.
   std::size_t maxElements = std::size_t(1) << 28;

@@ -19,13 +19,14 @@ Light defaultKeyLight(const View& view);
 
 // `--lights` applied to a scene that has its own lights: "gltf" keeps them, "none" removes them,
 // anything else is a scene JSON (docs/gbuffer.md) whose lights replace them and whose environment
-// replaces the scene's unless the user gave --environment (`environmentGiven`).
-void applyLightsOption(Scene& scene, const std::string& lights, bool environmentGiven);
+// replaces the scene's unless the user gave --environment (`environmentGiven`). allowOutside is
+// readScene's (--allow-outside-uris).
+void applyLightsOption(Scene& scene, const std::string& lights, bool environmentGiven, bool allowOutside = false);
 
 // The lighting of a glTF render: the file's KHR_lights_punctual lights (a file with none gets
 // defaultKeyLight) and `environment`, then applyLightsOption.
 Scene frameLighting(const Asset& asset, const View& view, const std::string& lights, const Environment& environment,
-                    bool environmentGiven);
+                    bool environmentGiven, bool allowOutside = false);
 
 // The sub-pixel offsets of `spp` samples, in [0, 1)^2, the same for every pixel: one sample in
 // each cell of a c x r grid (c = ceil(sqrt(spp)), r = ceil(spp / c)), placed in its cell by the

@@ -53,6 +53,7 @@ struct RenderJob {
   int gltfScene = -1;                // glTF only: scene index, -1 = the file's default
   std::string variant;               // glTF only: KHR_materials_variants name
   bool strict = false;               // glTF only: material typos are errors
+  bool allowOutsideUris = false;     // the asset's URIs and a --lights scene's environment may leave their folders
   int spp = 4;                       // glTF only: sub-pixel samples, 1..1024
   bool sppGiven = false;             // the user chose spp: refused for the built-in scene
   // Lighting: the environment given as `brdfcl render --environment/--env-intensity/--env-rotation`

@@ -38,11 +38,15 @@ struct Scene {
 // Reads a scene JSON file; a relative environment path is resolved against the file's directory.
 // Every rejection is a one-line brdfcl::Error "<file>: <key path>: <what is wrong>", e.g.
 // "scene.json: lights[1].spot.outerConeAngle: expected a number in (innerConeAngle, pi/2], got 2".
-Scene readScene(const std::string& path);
+// The environment path must name a regular file inside the scene file's folder, reached without
+// links (docs/gltf.md, "Files an asset names"); allowOutside also lets it be absolute, climb out
+// with ".." or pass links, as --allow-outside-uris asks.
+Scene readScene(const std::string& path, bool allowOutside = false);
 // The same from text; sourceName prefixes messages, baseDir resolves a relative environment path
 // ("" = the current directory). The environment file must exist and be readable; its contents
 // are read later (readEnvironmentRgb: OpenEXR or Radiance HDR, whatever the file's name).
-Scene parseScene(const std::string& json, const std::string& sourceName, const std::string& baseDir);
+Scene parseScene(const std::string& json, const std::string& sourceName, const std::string& baseDir,
+                 bool allowOutside = false);
 
 // The command line's environment: spec "builtin" (= "sky"), "sky", "studio", "uniform", or a
 // file ending in .hdr or .exr (any case; a relative path is taken from the current directory)

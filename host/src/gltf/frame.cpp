@@ -21,24 +21,24 @@ Light defaultKeyLight(const View& view) {
   return key;
 }
 
-void applyLightsOption(Scene& scene, const std::string& lights, bool environmentGiven) {
+void applyLightsOption(Scene& scene, const std::string& lights, bool environmentGiven, bool allowOutside) {
   if (lights == "gltf") return;
   if (lights == "none") {
     scene.lights.clear();
     return;
   }
-  const Scene file = readScene(lights);
+  const Scene file = readScene(lights, allowOutside);
   scene.lights = file.lights;
   if (!environmentGiven) scene.environment = file.environment;
 }
 
 Scene frameLighting(const Asset& asset, const View& view, const std::string& lights, const Environment& environment,
-                    bool environmentGiven) {
+                    bool environmentGiven, bool allowOutside) {
   Scene scene;
   scene.environment = environment;
   scene.lights = asset.lights;
   if (scene.lights.empty()) scene.lights.push_back(defaultKeyLight(view));
-  applyLightsOption(scene, lights, environmentGiven);
+  applyLightsOption(scene, lights, environmentGiven, allowOutside);
   return scene;
 }
 

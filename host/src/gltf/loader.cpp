@@ -20,6 +20,7 @@
 #include "gltf/images.hpp"
 #include "gltf/meshopt.hpp"
 #include "gltf/tangents.hpp"
+#include "io/confined_open.hpp"
 #include "io/files.hpp"
 #include "io/glb.hpp"
 #include "io/messages.hpp"
@@ -35,14 +36,25 @@ using brdfcl::detail::le32;
 
 std::string at(const char* kind, std::size_t i) { return std::string(kind) + "[" + std::to_string(i) + "]"; }
 
+// A buffer or image URI, as tinygltf will ask for it.
+struct External {
+  std::string label;  // "buffers[0]", "images[0] ('wood.png')": what cannot-read messages name
+  std::string field;  // "buffers[0].uri": what refusals name
+  std::string uri;    // as written
+  std::string name;   // percent-decoded, relative to the asset's folder
+  bool buffer = false;
+  std::uint64_t length = 0;  // a buffer's byteLength
+};
+
+// The largest image file read (stb_image takes an int size).
+constexpr std::uint64_t kMaxImageFileBytes = 0x7FFFFFFF;
+
 // What the tinygltf callbacks share with the loader.
 struct Context {
   std::string source;   // the file name as messages show it
   std::string baseDir;
   LoadOptions options;
-  std::map<std::string, std::string> labels;     // resolved path of an external file -> "buffers[0]"
-  std::map<std::string, std::string> uris;       // resolved path -> uri as written
-  std::map<std::string, std::uint64_t> lengths;  // resolved path of a buffer -> its byteLength
+  std::map<std::string, External> files;  // the path tinygltf builds for a URI -> the URI
   std::vector<bool> imageUsed;                   // by a texture: only those are decoded
   std::vector<Image> images;
   std::string error;  // the first failure seen in a callback; it wins over tinygltf's own text
@@ -95,32 +107,46 @@ json parseJson(const std::string& text, const std::string& source) {
   return doc;
 }
 
-// tinygltf's own file-name decoding, so that its paths can be mapped back to buffers[i]/images[i].
-std::string urlDecode(const std::string& s) {
-  auto hex = [](char c) -> int {
-    if (c >= '0' && c <= '9') return c - '0';
-    if (c >= 'a' && c <= 'f') return c - 'a' + 10;
-    if (c >= 'A' && c <= 'F') return c - 'A' + 10;
-    return 0;
-  };
-  std::string out;
-  for (std::size_t i = 0; i < s.size(); ++i) {
-    if (s[i] == '+') out += ' ';
-    else if (s[i] == '%' && s.size() > i + 2) {
-      out += char((hex(s[i + 1]) << 4) | hex(s[i + 2]));
-      i += 2;
-    } else out += s[i];
-  }
-  return out;
-}
-
+// The path tinygltf builds for a URI (its decoding, joined to baseDir), so that its file callbacks
+// can be mapped back to buffers[i]/images[i].
 std::string resolved(const std::string& baseDir, const std::string& uri) {
-  const std::string f = urlDecode(uri);
+  const std::string f = brdfcl::detail::uriDecoded(uri);
   if (baseDir.empty()) return f;
   return baseDir.back() == '/' ? baseDir + f : baseDir + "/" + f;
 }
 
 bool isDataUri(const std::string& uri) { return uri.rfind("data:", 0) == 0; }
+
+std::string quoted(const std::string& uri) { return "'" + printable(uri, 200) + "'"; }
+
+// "m.gltf: buffers[0].uri '../x.bin' <what>": a refusal that names the URI as written.
+std::string refusal(const Context& ctx, const External& e, const std::string& what) {
+  return ctx.source + ": " + e.field + " " + quoted(e.uri) + " " + what;
+}
+
+[[noreturn]] void refuse(const Context& ctx, const External& e, const std::string& what) {
+  throw Error(refusal(ctx, e, what));
+}
+
+constexpr const char* kOutside = "points outside the asset's folder; move the file into the folder, or pass --allow-outside-uris";
+
+// A URI's own refusals, before any file is looked at: what lies outside the folder is not
+// stat'ed, so a refusal says nothing about it. Registers the URI for readFile.
+void registerUri(Context& ctx, const std::string& label, const std::string& field, const std::string& uri, bool buffer,
+                 std::uint64_t length) {
+  External e{label, field, uri, brdfcl::detail::uriDecoded(uri), buffer, length};
+  if (!isDataUri(uri)) {
+    if (const std::string scheme = brdfcl::detail::uriScheme(uri); !scheme.empty())
+      refuse(ctx, e, "has the URI scheme '" + printable(scheme, 40) +
+                         ":'; brdfcl reads files in the asset's folder and data: URIs only: save the file next to the "
+                         "asset and name it by a relative path");
+    if (e.name.find('\0') != std::string::npos)
+      refuse(ctx, e, "holds a NUL character (%00) once percent-decoded; re-export the file");
+    if (!ctx.options.allowOutsideUris && !brdfcl::detail::staysInside(e.name))
+      refuse(ctx, e, kOutside);
+  }
+  ctx.files[resolved(ctx.baseDir, uri)] = std::move(e);
+}
 
 std::uint64_t unsignedAt(const Context& ctx, const json& obj, const char* key, const std::string& path, bool required) {
   const auto it = obj.find(key);
@@ -154,11 +180,7 @@ void checkBuffers(const json& doc, Context& ctx, bool glb, std::size_t binSize, 
         continue;
       }
       const std::string u = uri->get<std::string>();
-      if (isDataUri(u)) continue;
-      const std::string p = resolved(ctx.baseDir, u);
-      ctx.labels[p] = path;
-      ctx.uris[p] = u;
-      ctx.lengths[p] = length;
+      if (!isDataUri(u)) registerUri(ctx, path, path + ".uri", u, true, length);
     }
   }
   if (const auto it = doc.find("bufferViews"); it != doc.end() && it->is_array()) {
@@ -202,8 +224,7 @@ void registerImages(const json& doc, Context& ctx) {
       const std::string uri = u->get<std::string>();
       if (!isDataUri(uri)) {
         ctx.images[i].name = uri;
-        ctx.labels[resolved(ctx.baseDir, uri)] = imageLabel(img, i);
-        ctx.uris[resolved(ctx.baseDir, uri)] = uri;
+        registerUri(ctx, imageLabel(img, i), at("images", i) + ".uri", uri, false, 0);
       }
     }
   }
@@ -219,25 +240,50 @@ bool fileExists(const std::string&, void*) { return true; }  // so that a missin
 std::string expandPath(const std::string& p, void*) { return p; }  // no shell-style expansion of file names
 bool writeFile(std::string*, const std::string&, const std::vector<unsigned char>&, void*) { return false; }
 
+// Opens only what registerUri let through, inside the asset's folder (openInside), regular files
+// only, a buffer's first byteLength bytes (a longer file is padding).
 bool readFile(std::vector<unsigned char>* out, std::string* err, const std::string& path, void* user) {
   Context& ctx = *static_cast<Context*>(user);
-  const auto label = ctx.labels.find(path);
-  const std::string where = label != ctx.labels.end() ? label->second + ": " : "";
-  const std::string shown = printable(ctx.uris.count(path) ? ctx.uris[path] : path, 200);
+  auto failed = [&](const std::string& message) {
+    if (ctx.error.empty()) ctx.error = message;
+    if (err) *err = "refused";
+    return false;
+  };
+  const auto found = ctx.files.find(path);
+  if (found == ctx.files.end())  // a data: URI tinygltf does not decode itself
+    return failed(ctx.source + ": a buffer or image URI names '" + printable(path, 200) +
+                  "', which brdfcl does not read; use a file in the asset's folder or a base64 data: URI");
+  const External& e = found->second;
+  brdfcl::detail::OpenRules rules;
+  rules.allowOutside = ctx.options.allowOutsideUris;
+  if (e.buffer) rules.atLeast = rules.readAtMost = e.length;
+  else rules.sizeAtMost = kMaxImageFileBytes;
   std::string data;
-  if (const int e = brdfcl::detail::readWholeFile(path, data)) {
-    if (ctx.error.empty()) ctx.error = ctx.source + ": " + where + "cannot read '" + shown + "': " + std::strerror(e);
-    if (err) *err = std::strerror(e);
-    return false;
+  using Outcome = brdfcl::detail::Opened::Outcome;
+  const brdfcl::detail::Opened r = brdfcl::detail::readInside(ctx.baseDir, e.name, rules, data);
+  const std::string where = e.label + ": ";
+  switch (r.outcome) {
+    case Outcome::Ok:
+      out->assign(data.begin(), data.end());
+      return true;
+    case Outcome::Outside:
+      return failed(refusal(ctx, e, kOutside));
+    case Outcome::Link:
+      return failed(refusal(ctx, e, "is or passes through a symbolic link, which brdfcl does not follow from an "
+                                    "asset's folder; copy the file in, or pass --allow-outside-uris"));
+    case Outcome::NotRegular:
+      return failed(refusal(ctx, e, "is not a regular file (a directory, FIFO or device); name a file"));
+    case Outcome::TooSmall:
+      return failed(ctx.source + ": " + where + quoted(e.uri) + " has " + std::to_string(r.size) +
+                    " bytes, but byteLength says " + std::to_string(e.length) + "; re-export the file");
+    case Outcome::TooLarge:
+      return failed(refusal(ctx, e, "has " + std::to_string(r.size) + " bytes, more than the " +
+                                        std::to_string(kMaxImageFileBytes) +
+                                        " brdfcl reads for an image; save it smaller"));
+    case Outcome::Unreadable:
+      break;
   }
-  if (const auto len = ctx.lengths.find(path); len != ctx.lengths.end() && data.size() != len->second) {
-    if (ctx.error.empty())
-      ctx.error = ctx.source + ": " + where + "'" + shown + "' has " + std::to_string(data.size()) +
-                  " bytes, but byteLength says " + std::to_string(len->second) + "; re-export the file";
-    return false;
-  }
-  out->assign(data.begin(), data.end());
-  return true;
+  return failed(ctx.source + ": " + where + "cannot read " + quoted(e.uri) + ": " + std::strerror(r.error));
 }
 
 bool decodeImage(tinygltf::Image*, const int index, std::string*, std::string*, int, int, const unsigned char* bytes,

@@ -1,6 +1,7 @@
 // readScene/parseScene: the scene JSON of docs/gbuffer.md (camera, KHR_lights_punctual lights
 // with brdfcl's position/direction keys, environment). Every rejection is one line naming the
 // file and the JSON key path, in the style of the materials reader.
+#include "io/confined_open.hpp"
 #include "io/files.hpp"
 #include "io/messages.hpp"
 #include "brdfcl/scene.hpp"
@@ -39,8 +40,8 @@ using Vec3 = std::array<float, 3>;
 
 class SceneReader {
  public:
-  SceneReader(const std::string& source, const std::string& baseDir)
-      : source_(printable(source, 300)), baseDir_(baseDir) {}
+  SceneReader(const std::string& source, const std::string& baseDir, bool allowOutside)
+      : source_(printable(source, 300)), baseDir_(baseDir), allowOutside_(allowOutside) {}
 
   Scene read(const std::string& text) {
     json doc;
@@ -230,17 +231,29 @@ class SceneReader {
       if (!path->is_string() || path->get_ref<const std::string&>().empty())
         fail("environment.path", "expected a non-empty file name string, got " + describe(*path));
       namespace fs = std::filesystem;
-      const fs::path p(path->get<std::string>());
+      const std::string name = path->get<std::string>();
+      const fs::path p(name);
       e.builtin = false;
       e.path = (p.is_absolute() || baseDir_.empty()) ? p.string() : (fs::path(baseDir_) / p).string();
-      // Checked here so the message can name the key; the pixels are read later.
-      struct stat st {};
-      if (::stat(e.path.c_str(), &st) != 0)
-        fail("environment.path", "cannot read '" + printable(e.path, 300) + "': " + std::strerror(errno));
-      if (S_ISDIR(st.st_mode))
-        fail("environment.path", "cannot read '" + printable(e.path, 300) + "': " + std::strerror(EISDIR));
-      if (::access(e.path.c_str(), R_OK) != 0)
-        fail("environment.path", "cannot read '" + printable(e.path, 300) + "': " + std::strerror(errno));
+      // Checked here so the message can name the key; the pixels are read later. Confinement is
+      // decided before anything outside the folder is looked at, so a refusal tells nothing of it.
+      const std::string shown = source_ + ": environment.path '" + printable(name, 300) + "' ";
+      detail::OpenRules rules;
+      rules.allowOutside = allowOutside_;
+      if (name.find('\0') != std::string::npos) throw Error(shown + "holds a NUL character; name a file");
+      detail::Opened opened;
+      if (const int fd = detail::openInside(baseDir_, name, rules, opened); fd >= 0) ::close(fd);
+      using Outcome = detail::Opened::Outcome;
+      if (opened.outcome == Outcome::Outside)
+        throw Error(shown + "points outside the scene file's folder; move the file into the folder, or pass "
+                            "--allow-outside-uris");
+      if (opened.outcome == Outcome::Link)
+        throw Error(shown + "is or passes through a symbolic link, which brdfcl does not follow from a scene file's "
+                            "folder; copy the file in, or pass --allow-outside-uris");
+      if (opened.outcome == Outcome::NotRegular)
+        throw Error(shown + "is not a regular file (a directory, FIFO or device); name a file");
+      if (opened.outcome != Outcome::Ok)
+        fail("environment.path", "cannot read '" + printable(e.path, 300) + "': " + std::strerror(opened.error));
     }
     if (const auto it = v.find("intensity"); it != v.end())
       e.intensity = number(*it, "environment.intensity", "a number >= 0", [](double d) { return d >= 0.0; });
@@ -250,19 +263,21 @@ class SceneReader {
 
   std::string source_;
   std::string baseDir_;
+  bool allowOutside_ = false;
 };
 
 }  // namespace
 
-Scene parseScene(const std::string& jsonText, const std::string& sourceName, const std::string& baseDir) {
-  return SceneReader(sourceName, baseDir).read(jsonText);
+Scene parseScene(const std::string& jsonText, const std::string& sourceName, const std::string& baseDir,
+                 bool allowOutside) {
+  return SceneReader(sourceName, baseDir, allowOutside).read(jsonText);
 }
 
-Scene readScene(const std::string& path) {
+Scene readScene(const std::string& path, bool allowOutside) {
   const std::string shown = printable(path, 300);
   std::string text;
   if (const int err = detail::readWholeFile(path, text)) throw Error("cannot read '" + shown + "': " + std::strerror(err));
-  return parseScene(text, path, std::filesystem::path(path).parent_path().string());
+  return parseScene(text, path, std::filesystem::path(path).parent_path().string(), allowOutside);
 }
 
 }  // namespace brdfcl

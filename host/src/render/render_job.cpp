@@ -70,10 +70,12 @@ Image renderJob(Runtime& rt, const RenderJob& job) {
     options.scene = job.gltfScene;
     options.variant = job.variant;
     options.strict = job.strict;
+    options.allowOutsideUris = job.allowOutsideUris;
     const FramedAsset framed = loadFramedAsset(job.gltf, options, job.camera, job.width, job.height);
     if (job.warn)
       for (const auto& w : framed.asset.warnings) job.warn(w);
-    const Scene lighting = gltf::frameLighting(framed.asset, framed.view, job.lights, environment, job.environmentGiven);
+    const Scene lighting =
+        gltf::frameLighting(framed.asset, framed.view, job.lights, environment, job.environmentGiven, job.allowOutsideUris);
     checkFrameFits(FrameJob::Render, framed.width, framed.height, usableHostMemory());
     return renderFramedAsset(rt, framed, lighting, job.spp, job.shade, job.model);
   }
@@ -86,7 +88,7 @@ Image renderJob(Runtime& rt, const RenderJob& job) {
   const int w = sizeGiven ? job.width : 768, h = sizeGiven ? job.height : 768;
   Scene scene = builtinScene(job.scene);
   if (job.environmentGiven) scene.environment = environment;
-  gltf::applyLightsOption(scene, job.lights, job.environmentGiven);
+  gltf::applyLightsOption(scene, job.lights, job.environmentGiven, job.allowOutsideUris);
   checkFrameFits(FrameJob::Render, w, h, usableHostMemory());
   const GBuffer g = renderSpheresGBuffer(rt, scene, w, h);
   Shader shader(rt, scene, job.model);
