@@ -221,6 +221,19 @@ TEST_F(GltfConfinement, DirectoryIsNotARegularFile) {
   EXPECT_EQ(loadError(p), p + ": images[0].uri 'sub' " + kNotRegular);
 }
 
+TEST_F(GltfConfinement, ImageFileSizeIsBoundedBeforeReading) {
+  const std::string p = asset();
+  fs::resize_file(scratch.path("asset/t.png"), std::uintmax_t(1) << 31);  // sparse: no disk, nothing read
+  EXPECT_EQ(loadError(p), p + ": images[0].uri 't.png' has 2147483648 bytes, more than the 2147483647 brdfcl reads "
+                              "for an image; save it smaller");
+}
+
+TEST_F(GltfConfinement, DataUriTinygltfCannotDecodeIsNotAFileName) {
+  const std::string p = asset([](json& d) { d["buffers"][0]["uri"] = "data:text/plain,abc"; });
+  EXPECT_CONTAINS(loadError(p), ": a buffer or image URI names '");
+  EXPECT_CONTAINS(loadError(p), "', which brdfcl does not read; use a file in the asset's folder or a base64 data: URI");
+}
+
 // --- a scene file's environment path ------------------------------------------------------------
 
 class SceneConfinement : public GltfConfinement {
@@ -245,6 +258,7 @@ TEST_F(SceneConfinement, EnvironmentPathStaysInTheScenesFolder) {
             "s.json: environment.path 'pipe.hdr' is not a regular file (a directory, FIFO or device); name a file");
   ASSERT_EQ(::symlink("../secret/env.hdr", scratch.path("asset/env.hdr").c_str()), 0);
   EXPECT_CONTAINS(sceneError("env.hdr"), "s.json: environment.path 'env.hdr' is or passes through a symbolic link");
+  EXPECT_CONTAINS(sceneError("a\\u0000b.hdr"), "' holds a NUL character; name a file");
   const Scene s = parseScene(R"({"environment": {"path": "../secret/env.hdr"}})", "s.json", scratch.path("asset"), true);
   EXPECT_EQ(fs::path(s.environment.path), fs::path(scratch.path("asset")) / "../secret/env.hdr");
 }
