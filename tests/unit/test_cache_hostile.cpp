@@ -24,6 +24,7 @@
 #include "brdfcl/error.hpp"
 #include "host/src/io/disk_cache.hpp"
 #include "process.hpp"
+#include "support.hpp"
 
 namespace fs = std::filesystem;
 using brdfcl::test::RunResult;
@@ -32,17 +33,7 @@ using brdfcl::test::slurp;
 
 namespace {
 
-#if defined(__SANITIZE_ADDRESS__)
-constexpr bool kAsan = true;
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-constexpr bool kAsan = true;
-#else
-constexpr bool kAsan = false;
-#endif
-#else
-constexpr bool kAsan = false;
-#endif
+constexpr bool kAsan = brdfcl::test::kAddressSanitizer;
 
 const char* kMaterials = R"({"materials": [{"pbrMetallicRoughness": {"roughnessFactor": 0.5},
   "extensions": {"KHR_materials_sheen": {"sheenColorFactor": [0.5, 0.4, 0.3], "sheenRoughnessFactor": 0.4}}}]})";
