@@ -18,6 +18,7 @@ void addBenchCommand(CLI::App& app);
 void addLutCommand(CLI::App& app);
 void addDiffCommand(CLI::App& app);
 void addCompareCommand(CLI::App& app);
+void addCacheCommand(CLI::App& app);
 
 // "brdfcl: warning: <text>" on stderr: the one form every command warns in.
 void printWarning(const std::string& text);

@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "arguments.hpp"
+#include "brdfcl/cache.hpp"
 #include "brdfcl/cleanup.hpp"
 #include "brdfcl/error.hpp"
 #include "brdfcl/runtime.hpp"
@@ -74,6 +75,7 @@ bool splitsAcrossRanks(const char* subcommand) {
 
 int main(int argc, char** argv) {
   brdfcl::installSignalCleanup();
+  brdfcl::setCacheWarningHandler(brdfcl::cli::printWarning);
   std::unique_ptr<brdfcl::mpi::Scope> mpiScope;
   try {
     mpiScope = std::make_unique<brdfcl::mpi::Scope>(&argc, &argv);
@@ -93,6 +95,7 @@ int main(int argc, char** argv) {
   brdfcl::cli::addLutCommand(app);
   brdfcl::cli::addDiffCommand(app);
   brdfcl::cli::addCompareCommand(app);
+  brdfcl::cli::addCacheCommand(app);
   const auto& session = brdfcl::mpi::Session::get();
   if (argc < 2) {
     if (session.rank() == 0) std::fputs(app.help().c_str(), stdout);

@@ -1,6 +1,6 @@
 // The disk cache of prepared image-based light: a warm run reads the prefiltered chains,
-// irradiance and DFG table instead of recomputing them and renders the same bytes; a truncated
-// or foreign cache file is recomputed, and another environment gets another entry.
+// irradiance and DFG table instead of recomputing them and renders the same bytes; a truncated,
+// corrupt or foreign cache file is recomputed, and another environment gets another entry.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -73,14 +73,25 @@ TEST(EnvironmentCache, WarmRunReadsTheCacheAndRendersTheSameBytes) {
   ASSERT_EQ(warm.status, 0) << warm.describe();
   EXPECT_EQ(brdfcl::test::slurp(dir.path("cold.png")), brdfcl::test::slurp(dir.path("warm.png")));
 
-  // The cache is what a warm run reads: poison it with the right length and the image changes.
-  {
-    std::ofstream poison(env[0], std::ios::binary | std::ios::trunc);
-    const std::vector<float> zeros(size / sizeof(float), 0.0f);
-    poison.write(reinterpret_cast<const char*>(zeros.data()), std::streamsize(size));
-  }
+  // The cache is what a warm run reads: a well-formed entry of zeros changes the image.
+  const std::string name = env[0].filename().string(), whole = brdfcl::test::slurp(env[0].string());
+  const auto payload = brdfcl::detail::parseCacheEntry(whole, name);
+  ASSERT_TRUE(payload.has_value());
+  std::ofstream(env[0], std::ios::binary | std::ios::trunc)
+      << brdfcl::detail::encodeCacheEntry(name, std::string(payload->size(), '\0'));
   ASSERT_EQ(render(dir, "poisoned.png").status, 0);
   EXPECT_NE(brdfcl::test::slurp(dir.path("cold.png")), brdfcl::test::slurp(dir.path("poisoned.png")));
+
+  // Zeros of the right length without the entry's header and checksum are refused with one
+  // warning, recomputed, and rewritten whole.
+  std::ofstream(env[0], std::ios::binary | std::ios::trunc) << std::string(std::size_t(size), '\0');
+  const RunResult refused = render(dir, "refused.png");
+  ASSERT_EQ(refused.status, 0) << refused.describe();
+  std::size_t aboutIt = 0;
+  for (const auto& w : refused.warningLines()) aboutIt += w.find(name) != std::string::npos;
+  EXPECT_EQ(aboutIt, 1u) << refused.err;
+  EXPECT_EQ(brdfcl::test::slurp(dir.path("cold.png")), brdfcl::test::slurp(dir.path("refused.png")));
+  EXPECT_EQ(brdfcl::test::slurp(env[0].string()), whole);
 
   // A truncated entry is not trusted: recomputed, rewritten whole, same bytes as the first run.
   fs::resize_file(env[0], size / 2);

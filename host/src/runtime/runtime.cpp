@@ -11,6 +11,7 @@
 
 #include "brdfcl/error.hpp"
 #include "io/disk_cache.hpp"
+#include "runtime/pocl_cache_dir.hpp"
 
 namespace brdfcl {
 namespace detail {
@@ -55,9 +56,13 @@ constexpr const char* kNoPlatform = "no OpenCL platform found; install pocl-open
 // leaves two of them on one core for a whole launch, which runs at half speed: launches of the
 // same kernel took either t or 2t (bench/README.md, "Run-to-run spread"). Pinned, they do not.
 // Set before PoCL reads its environment (the first OpenCL call), and never over the user's value.
+// PoCL's kernel cache folder is checked then too (runtime/pocl_cache_dir.hpp).
 void pinPoclWorkers() {
   static std::once_flag once;
-  std::call_once(once, [] { ::setenv("POCL_AFFINITY", "1", 0); });
+  std::call_once(once, [] {
+    ::setenv("POCL_AFFINITY", "1", 0);
+    detail::preparePoclCacheFolder();
+  });
 }
 
 std::vector<cl::Platform> platformsOrThrow() {
