@@ -17,8 +17,12 @@ namespace brdfcl::detail {
 std::filesystem::path cacheDirectory();
 
 // 64-bit FNV-1a, continued from `seed`: a content key, not a checksum against tampering.
-std::uint64_t contentHash(std::string_view bytes, std::uint64_t seed = 0xcbf29ce484222325ull);
-std::uint64_t contentHash(const std::vector<float>& values, std::uint64_t seed = 0xcbf29ce484222325ull);
+// The default seed is FNV's offset basis moved by the entry format's version: entries written in
+// an older format then have other names, are never read as this format's, and age out by the
+// budget's least-recently-used pruning instead of each costing a warning.
+inline constexpr std::uint64_t kEntryFormatSeed = 0xcbf29ce484222325ull ^ 0x2;
+std::uint64_t contentHash(std::string_view bytes, std::uint64_t seed = kEntryFormatSeed);
+std::uint64_t contentHash(const std::vector<float>& values, std::uint64_t seed = kEntryFormatSeed);
 
 // The entry format, little-endian:
 //   0  8  magic "BRDFCLCE"
