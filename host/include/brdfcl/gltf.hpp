@@ -149,9 +149,10 @@ struct LoadOptions {
   // Asset::warnings; strict makes the first of them the load's Error instead.
   bool strict = false;
   // Bounds against hostile files, checked before allocating (the fuzz harness lowers them): the
-  // world-space vertices plus triangles of all primitives together, and the pixels of one image.
+  // world-space vertices plus triangles of all primitives together, and the pixels of one image
+  // (0: brdfcl's texture limit, 2^26 pixels, or BRDFCL_MAX_IMAGE_PIXELS when that is set).
   std::size_t maxElements = std::size_t(1) << 28;
-  std::size_t maxImagePixels = std::size_t(1) << 28;
+  std::size_t maxImagePixels = 0;
 };
 
 // Loads a .gltf (external or data-URI buffers and images) or .glb file and the scene chosen.
