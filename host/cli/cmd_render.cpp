@@ -336,11 +336,11 @@ void addRenderCommands(CLI::App& app) {
                       " reproduces its engine's own image-based light, so use --ibl split-sum with it");
         GBufferReadOptions readOptions;
         readOptions.check = !a->noCheck;
+        // readGBuffer checks the frame budget from the EXR header, before decoding.
         const GBuffer g = readGBuffer(a->gbuffer, readOptions);
         const Scene scene = readScene(a->scene, a->allowOutsideUris);
         if (const std::string w = shadeCameraWarning(a->scene, scene, a->gbuffer, g); !w.empty())
           printWarning(w);
-        checkFrameFits(FrameJob::Shade, g.width, g.height, usableHostMemory(), a->gbuffer);
         shares = rowShares(g.height, shadeOptions.ibl);
         if (myShareIsEmpty(shares)) return;
         DeviceSet devices(mpi::deviceSelector(a->device));

@@ -56,7 +56,7 @@ int run(CLI::App& app, int argc, char** argv, bool speak) {
     if (speak) std::fprintf(stderr, "brdfcl: %s\n", e.what());
     return e.exitCode();
   } catch (const std::bad_alloc&) {
-    if (speak) std::fprintf(stderr, "brdfcl: out of memory; try a smaller --size or --chunk, or free memory\n");
+    if (speak) std::fprintf(stderr, "brdfcl: %s\n", brdfcl::outOfMemoryMessage().c_str());
     return 2;
   } catch (const std::exception& e) {
     if (speak) std::fprintf(stderr, "brdfcl: internal error: %s\n", e.what());

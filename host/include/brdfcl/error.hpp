@@ -16,4 +16,8 @@ class Error : public std::runtime_error {
   int exitCode_;
 };
 
+// The message for a std::bad_alloc that reached the top: it names the input being read when
+// one was (the file is then the likely cause), else suggests a smaller --size or --chunk.
+std::string outOfMemoryMessage();
+
 }  // namespace brdfcl

@@ -153,9 +153,10 @@ struct LoadOptions {
   // user who keeps textures in a sibling folder asks for. Non-regular files are refused either way.
   bool allowOutsideUris = false;
   // Bounds against hostile files, checked before allocating (the fuzz harness lowers them): the
-  // world-space vertices plus triangles of all primitives together, and the pixels of one image.
+  // world-space vertices plus triangles of all primitives together, and the pixels of one image
+  // (0: brdfcl's texture limit, 2^26 pixels, or BRDFCL_MAX_IMAGE_PIXELS when that is set).
   std::size_t maxElements = std::size_t(1) << 28;
-  std::size_t maxImagePixels = std::size_t(1) << 28;
+  std::size_t maxImagePixels = 0;
 };
 
 // Loads a .gltf (external or data-URI buffers and images) or .glb file and the scene chosen.

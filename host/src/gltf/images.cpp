@@ -3,7 +3,10 @@
 // instruments the decoder too.
 #include "gltf/images.hpp"
 
+#include "io/input_limits.hpp"
+
 #include <climits>
+#include <exception>
 #include <cstdint>
 #include <memory>
 
@@ -29,7 +32,16 @@ bool decodeImage(const unsigned char* bytes, std::size_t size, std::size_t maxPi
     return false;
   }
   // Checked before decoding: the header alone can claim any size.
-  if (w <= 0 || h <= 0 || std::size_t(w) * std::size_t(h) > maxPixels) {
+  if (maxPixels == 0) {
+    // Called from tinygltf, which is not to be unwound by an exception: a bad variable becomes the reason.
+    try {
+      reason = brdfcl::detail::imagePixelRefusal(brdfcl::detail::ImageKind::Texture, w, h);
+    } catch (const std::exception& e) {
+      reason = e.what();
+    }
+    if (!reason.empty()) return false;
+  }
+  if (w <= 0 || h <= 0 || (maxPixels != 0 && std::size_t(w) * std::size_t(h) > maxPixels)) {
     reason = std::to_string(w) + "x" + std::to_string(h) + " pixels are more than brdfcl's limit of " +
              std::to_string(maxPixels);
     return false;

@@ -9,7 +9,8 @@
 namespace brdfcl::gltf::detail {
 
 // Decodes `size` bytes into out.width/height/bits/rgba. On failure returns false and says why in
-// `reason` (stb_image's words, or the size limit).
+// `reason` (stb_image's words, or the size limit). maxPixels 0: the texture limit of
+// input_limits.hpp, whose refusal (a `reason` starting "declares ") is a whole sentence.
 bool decodeImage(const unsigned char* bytes, std::size_t size, std::size_t maxPixels, Image& out, std::string& reason);
 
 }  // namespace brdfcl::gltf::detail

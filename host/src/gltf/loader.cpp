@@ -23,6 +23,7 @@
 #include "io/confined_open.hpp"
 #include "io/files.hpp"
 #include "io/glb.hpp"
+#include "io/input_limits.hpp"
 #include "io/messages.hpp"
 
 namespace brdfcl::gltf {
@@ -293,11 +294,13 @@ bool decodeImage(tinygltf::Image*, const int index, std::string*, std::string*, 
   Image& img = ctx.images[std::size_t(index)];
   std::string reason;
   if (size <= 0 || !detail::decodeImage(bytes, std::size_t(size), ctx.options.maxImagePixels, img, reason)) {
-    if (ctx.error.empty())
-      ctx.error = ctx.source + ": " + at("images", std::size_t(index)) +
-                  (img.name.rfind("images[", 0) == 0 ? "" : " ('" + printable(img.name, 120) + "')") +
-                  ": cannot decode the image (" + printable(reason.empty() ? "no data" : reason, 120) +
-                  "); save it as PNG or JPEG";
+    const std::string label = at("images", std::size_t(index)) +
+                              (img.name.rfind("images[", 0) == 0 ? "" : " ('" + printable(img.name, 120) + "')");
+    if (ctx.error.empty() && reason.rfind("declares ", 0) == 0)
+      ctx.error = ctx.source + ": " + label + " " + reason;
+    else if (ctx.error.empty())
+      ctx.error = ctx.source + ": " + label + ": cannot decode the image (" +
+                  printable(reason.empty() ? "no data" : reason, 120) + "); save it as PNG or JPEG";
     return false;
   }
   return true;
@@ -380,9 +383,9 @@ Asset loadFromMemory(const std::string& bytes, const std::string& name, const st
 }
 
 Asset load(const std::string& path, const LoadOptions& options) {
+  const brdfcl::detail::ReadingInput reading(printable(path, 300));
   std::string bytes;
-  if (const int e = brdfcl::detail::readWholeFile(path, bytes))
-    throw Error("cannot read '" + printable(path, 300) + "': " + std::strerror(e));
+  brdfcl::detail::readInputFile(path, printable(path, 300), "", bytes, brdfcl::detail::maxInputFileBytes(path));
   const std::size_t slash = path.find_last_of('/');
   const std::string base = slash == std::string::npos ? "" : path.substr(0, slash + 1);
   const bool glbName = path.size() >= 4 && path.compare(path.size() - 4, 4, ".glb") == 0;

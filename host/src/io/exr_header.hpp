@@ -1,7 +1,11 @@
 // The checks an OpenEXR file's header must pass before OpenEXR itself reads it (image.cpp's
 // readExrChannels), and the limits on what brdfcl accepts.
 #pragma once
+#include <functional>
 #include <string>
+#include <vector>
+
+#include "brdfcl/image.hpp"
 
 namespace brdfcl::detail {
 
@@ -27,5 +31,14 @@ bool exrImageSizeOk(long long width, long long height);
 // inside its header, has an attribute whose value does not match its size, an image larger
 // than the limits above, or too few bytes after the header for its chunk offset table.
 ExrLayout checkExrHeader(const std::string& path, const std::string& shown);
+
+// readExrChannels and readExrRgb (brdfcl/image.hpp) with `checkSize` called with the header's
+// width and height after checkExrHeader and before any pixel is decoded (it throws to refuse).
+std::vector<std::vector<float>> readExrChannels(
+    const std::string& path,
+    const std::function<std::vector<std::string>(const std::vector<ExrChannelInfo>&)>& choose, int& width,
+    int& height, const std::function<void(long long, long long)>& checkSize);
+std::vector<float> readExrRgb(const std::string& path, int& width, int& height,
+                              const std::function<void(long long, long long)>& checkSize);
 
 }  // namespace brdfcl::detail

@@ -2,6 +2,8 @@
 // Blender's multilayer pass names), the value range checks and the camera header attributes live
 // here; the file-level checks (magic, single part, data window, sampling, truncation) are
 // readExrChannels' in image.cpp.
+#include "io/exr_header.hpp"
+#include "io/input_limits.hpp"
 #include "io/messages.hpp"
 #include "brdfcl/gbuffer.hpp"
 
@@ -416,7 +418,11 @@ GBuffer readGBuffer(const std::string& path, const GBufferReadOptions& options) 
   };
 
   GBuffer g;
-  std::vector<std::vector<float>> planes = readExrChannels(path, choose, g.width, g.height);
+  // The frame budget of shade (or BRDFCL_MAX_IMAGE_PIXELS), from the header before decoding.
+  std::vector<std::vector<float>> planes =
+      detail::readExrChannels(path, choose, g.width, g.height, [&](long long w, long long h) {
+        detail::checkImagePixels(detail::ImageKind::GBuffer, shown, w, h);
+      });
   const std::size_t n = g.pixelCount();
   // Checked here, where the file can be named, rather than only when shading starts (after the
   // environment is prepared, which takes seconds).

@@ -3,6 +3,7 @@
 #include "io/glb.hpp"
 
 #include "brdfcl/error.hpp"
+#include "io/input_limits.hpp"
 
 namespace brdfcl::detail {
 namespace {
@@ -34,6 +35,9 @@ std::string glbJsonChunk(const std::string& b, const std::string& source, std::s
   if (jsonLength == 0 || 20 + jsonLength > length)
     bad("truncated GLB chunk 0 (JSON): it claims " + std::to_string(jsonLength) + " bytes, " +
         std::to_string(length - 20) + " remain; re-export the file");
+  if (jsonLength > maxJsonBytes())
+    bad("its JSON chunk has " + std::to_string(jsonLength) + " bytes, more than " +
+        byteLimitText(maxJsonBytes()) + " (BRDFCL_MAX_JSON_BYTES); set BRDFCL_MAX_JSON_BYTES to allow more");
   const std::uint64_t next = 20 + jsonLength;
   binSize = 0;
   if (next < length) {

@@ -19,6 +19,7 @@
 
 #include "io/exr_header.hpp"
 #include "io/files.hpp"
+#include "io/input_limits.hpp"
 #include "io/messages.hpp"
 #include "brdfcl/error.hpp"
 #include "brdfcl/image.hpp"
@@ -123,13 +124,16 @@ std::vector<float> readRadianceHdr(const std::string& path, int& width, int& hei
   if (struct stat st {}; ::stat(path.c_str(), &st) == 0 && S_ISREG(st.st_mode) &&
                          st.st_size > std::numeric_limits<int>::max())
     throw Error(shown + ": cannot decode Radiance HDR (the file is larger than 2 GiB, stb_image's limit); use OpenEXR");
+  const detail::ReadingInput reading(shown);
   std::string bytes;
-  if (const int err = detail::readWholeFile(path, bytes))
-    throw Error("cannot read '" + shown + "': " + std::strerror(err));
+  detail::readInputFile(path, shown, "", bytes, std::numeric_limits<int>::max());
   if (!isRadiance(bytes))
     throw Error(shown + ": not a Radiance HDR file (it does not start with #?RADIANCE or #?RGBE)");
   long long w = 0, h = 0;
   const std::size_t data = parseHeader(bytes, shown, w, h);
+  // Before the scan lines are walked or decoded: a few kilobytes of run-length data can declare
+  // gigabytes of float pixels (12 bytes each, and the prefiltered chain after).
+  detail::checkImagePixels(detail::ImageKind::Environment, shown, w, h);
   checkPixelData(bytes, data, w, h, shown);
   if (bytes.size() > static_cast<std::size_t>(std::numeric_limits<int>::max()))
     throw Error(shown + ": cannot decode Radiance HDR (the file is larger than 2 GiB, stb_image's limit); use OpenEXR");
@@ -171,7 +175,9 @@ std::vector<float> readEnvironmentRgb(const std::string& path, int& width, int& 
   if (isRadiance(head))
     rgb = readRadianceHdr(path, width, height);
   else if (isExr(head))
-    rgb = readExrRgb(path, width, height);
+    rgb = detail::readExrRgb(path, width, height, [&](long long w, long long h) {
+      detail::checkImagePixels(detail::ImageKind::Environment, shown, w, h);
+    });
   else
     throw Error(shown + ": not an environment image: expected OpenEXR or Radiance HDR (.hdr, starting with #?RADIANCE)");
   // One NaN would spread through every prefiltered level. (RGBE cannot encode one; EXR can.)

@@ -15,6 +15,7 @@
 #include <exception>
 #include <limits>
 #include <memory>
+#include <new>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -26,6 +27,7 @@
 #include "io/files.hpp"
 #include "io/png.hpp"
 #include "io/exr_header.hpp"
+#include "io/input_limits.hpp"
 #include "io/messages.hpp"
 #include "brdfcl/error.hpp"
 #include "brdfcl/image.hpp"
@@ -39,12 +41,17 @@ std::string printable(const std::string& s, std::size_t maxLength = 300) { retur
 
 }  // namespace
 
-std::vector<std::vector<float>> readExrChannels(
+namespace {
+std::vector<std::vector<float>> readExrChannelsChecked(
     const std::string& path,
     const std::function<std::vector<std::string>(const std::vector<ExrChannelInfo>&)>& choose, int& width,
-    int& height) {
+    int& height, const std::function<void(long long, long long)>& checkSize) {
   const std::string shown = printable(path);
+  const detail::ReadingInput reading(shown);
   const detail::ExrLayout layout = detail::checkExrHeader(path, shown);
+  // From the header, before OpenEXR allocates anything: a few hundred kilobytes of compressed
+  // scan lines can declare gigabytes of pixels.
+  if (checkSize) checkSize(layout.width, layout.height);
   try {
     Imf::InputFile in(path.c_str());
     const Imf::Header& header = in.header();
@@ -109,11 +116,28 @@ std::vector<std::vector<float>> readExrChannels(
     return planes;
   } catch (const Error&) {
     throw;
+  } catch (const std::bad_alloc&) {
+    throw;  // outOfMemoryMessage names the file (ReadingInput above)
   } catch (const std::exception& e) {
     // OpenEXR reports truncation inside the header or a corrupt chunk as Iex exceptions.
     throw Error(shown + ": cannot read OpenEXR data (" + printable(e.what(), 200) +
                 "); the file is truncated or corrupt: write it again");
   }
+}
+}  // namespace
+
+std::vector<std::vector<float>> readExrChannels(
+    const std::string& path,
+    const std::function<std::vector<std::string>(const std::vector<ExrChannelInfo>&)>& choose, int& width,
+    int& height) {
+  return readExrChannelsChecked(path, choose, width, height, {});
+}
+
+std::vector<std::vector<float>> detail::readExrChannels(
+    const std::string& path,
+    const std::function<std::vector<std::string>(const std::vector<ExrChannelInfo>&)>& choose, int& width,
+    int& height, const std::function<void(long long, long long)>& checkSize) {
+  return readExrChannelsChecked(path, choose, width, height, checkSize);
 }
 
 void writeExrRgb(const std::string& path, int width, int height, const std::vector<float>& rgb) {
@@ -145,9 +169,15 @@ void writeExrRgb(const std::string& path, int width, int height, const std::vect
 }
 
 std::vector<float> readExrRgb(const std::string& path, int& width, int& height) {
-  const std::string shown = printable(path);
+  return detail::readExrRgb(path, width, height, {});
+}
+
+std::vector<float> detail::readExrRgb(const std::string& path, int& width, int& height,
+                                      const std::function<void(long long, long long)>& checkSize) {
+  const std::string shown = brdfcl::printable(path);
+  const detail::ReadingInput reading(shown);
   bool grey = false;
-  const auto planes = readExrChannels(
+  const auto planes = readExrChannelsChecked(
       path,
       [&](const std::vector<ExrChannelInfo>& channels) -> std::vector<std::string> {
         auto has = [&](const char* n) {
@@ -161,9 +191,9 @@ std::vector<float> readExrRgb(const std::string& path, int& width, int& height) 
         std::string list;
         for (const auto& c : channels) list += (list.empty() ? "" : " ") + c.name;
         throw Error(shown + ": expected channels R, G, B (or Y alone), found: " +
-                    printable(list.empty() ? std::string("none") : list, 200));
+                    brdfcl::printable(list.empty() ? std::string("none") : list, 200));
       },
-      width, height);
+      width, height, checkSize);
   const std::size_t n = planes[0].size();
   std::vector<float> rgb(3 * n);
   for (std::size_t i = 0; i < n; ++i)

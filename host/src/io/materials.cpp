@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "io/files.hpp"
+#include "io/input_limits.hpp"
 #include "io/glb.hpp"
 #include "io/messages.hpp"
 #include "model/material_keys.hpp"
@@ -283,9 +284,9 @@ std::vector<MaterialParams> parseMaterials(const std::string& jsonText, const st
 }
 
 std::vector<MaterialParams> readMaterials(const std::string& path, const MaterialReadOptions& options) {
+  const detail::ReadingInput reading(printable(path, 300));
   std::string text;
-  if (const int err = detail::readWholeFile(path, text))
-    throw Error("cannot read materials file '" + printable(path, 300) + "': " + std::strerror(err));
+  detail::readInputFile(path, printable(path, 300), "materials file ", text, detail::maxInputFileBytes(path));
   // A .glb holds the same JSON in its first chunk; the magic decides, not the name.
   if (detail::hasGlbMagic(text)) {
     std::size_t binSize = 0;

@@ -24,6 +24,7 @@
 #include "brdfcl/error.hpp"
 #include "brdfcl/io.hpp"
 #include "io/directions.hpp"
+#include "io/input_limits.hpp"
 #include "io/messages.hpp"
 #include "io/rows.hpp"
 
@@ -47,7 +48,8 @@ std::string displayName(const std::string& path) { return path == "-" ? "<stdin>
 
 // The bytes of the samples file. A regular file is read on demand with pread, so memory stays
 // bounded by what the caller asks for; pipes and /proc files (st_size 0, no seeking) are read
-// whole at once, as a one-shot reader would have to anyway.
+// whole at once, up to maxJsonBytes(): the readers rewind and count rows, which a stream cannot
+// do, and a stream that never ends (/dev/zero) must not take all memory first.
 class Source {
  public:
   explicit Source(const std::string& path) : name_(displayName(path)) {
@@ -70,10 +72,15 @@ class Source {
       size_ = static_cast<std::size_t>(st.st_size);
       return;
     }
+    const std::size_t cap = detail::maxJsonBytes();
     std::size_t used = 0;
-    whole_.resize(65536);
+    whole_.resize(std::min<std::size_t>(65536, cap + 1));
     for (;;) {
-      if (used == whole_.size()) whole_.resize(whole_.size() * 2);
+      if (used > cap) {
+        release();
+        throw Error(detail::jsonBytesRefusal(name_, 0, cap));
+      }
+      if (used == whole_.size()) whole_.resize(std::min(whole_.size() * 2, cap + 1));
       const ssize_t n = ::read(fd_, &whole_[used], whole_.size() - used);
       if (n < 0 && errno == EINTR) continue;
       if (n < 0) failOpen(errno);
@@ -423,6 +430,13 @@ class CsvReader {
 
   std::size_t limit() const { return std::min(src_.size(), limit_); }
 
+  // `count` lines past buf_[begin_] come before the long one.
+  [[noreturn]] void throwLongLine(std::size_t count) const {
+    throw Error(name_ + ": line " + std::to_string((headerRead_ ? line_ : 1) + count) + " is longer than " +
+                detail::byteLimitText(detail::kMaxCsvLineBytes) +
+                "; a samples line holds 6 or 7 numbers: check that this is the samples CSV file");
+  }
+
   void readHeader(bool optional) {
     const std::string expectedHeader = std::string("'") + kHeaderWithMaterial + "'" +
                                        (optional ? std::string(" or '") + kHeaderWithoutMaterial + "'" : "");
@@ -484,6 +498,7 @@ class CsvReader {
     for (int k = 0; k < layout_.fields; ++k) layout_.header += (k ? "," : "") + std::string(layout_.names[k]);
     begin_ = cut;
     bodyOffset_ = offset_ - (end_ - begin_);
+    headerRead_ = true;
   }
 
   // Whether the file holds only blanks after buffer position `from` (reads ahead in blocks
@@ -511,10 +526,15 @@ class CsvReader {
       while (count < lines) {
         const char* nl = findNewline(buf_.data() + scan, buf_.data() + end_);
         if (!nl) break;
-        scan = static_cast<std::size_t>(nl - buf_.data()) + 1;
+        const std::size_t next = static_cast<std::size_t>(nl - buf_.data()) + 1;
+        if (next - scan > detail::kMaxCsvLineBytes + 1) throwLongLine(count);
+        scan = next;
         ++count;
       }
       if (count == lines) return scan;
+      // Before the buffer grows further: a file without newlines (or the wrong file) would
+      // otherwise be read whole into one line.
+      if (end_ - scan > detail::kMaxCsvLineBytes) throwLongLine(count);
       if (eof_) return end_;
       // Keep the unparsed tail at the front, then read another block after it.
       if (begin_ > 0) {
@@ -590,6 +610,7 @@ class CsvReader {
   std::size_t offset_ = 0;           // file offset of buf_[end_]
   std::size_t bodyOffset_ = 0;       // file offset of the first line after the header
   bool eof_ = false;
+  bool headerRead_ = false;
   std::size_t line_ = 2;             // 1-based file line of buf_[begin_]; the header is line 1
   std::size_t rows_ = 0;             // rows returned so far
   std::size_t pendingBlank_ = 0;     // first line of a blank run that ended the last chunk
@@ -934,8 +955,13 @@ struct SampleStream::Impl {
 };
 
 SampleStream::SampleStream(const std::string& path, std::size_t materialCount, bool materialColumnOptional)
-    : impl_(std::make_unique<Impl>(path)) {
+    : impl_([&] {
+        // A pipe is read whole here: an out-of-memory names the file.
+        const detail::ReadingInput reading(displayName(path));
+        return std::make_unique<Impl>(path);
+      }()) {
   const std::string name = displayName(path);
+  const detail::ReadingInput reading(name);
   // stdin has no extension: NPY's magic tells it from CSV (whose header cannot start with 0x93).
   char magic[6] = {};
   const bool npy = path == "-" ? impl_->source.readAt(0, magic, sizeof magic) == sizeof magic &&

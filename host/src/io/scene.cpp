@@ -3,6 +3,7 @@
 // file and the JSON key path, in the style of the materials reader.
 #include "io/confined_open.hpp"
 #include "io/files.hpp"
+#include "io/input_limits.hpp"
 #include "io/messages.hpp"
 #include "brdfcl/scene.hpp"
 
@@ -275,8 +276,9 @@ Scene parseScene(const std::string& jsonText, const std::string& sourceName, con
 
 Scene readScene(const std::string& path, bool allowOutside) {
   const std::string shown = printable(path, 300);
+  const detail::ReadingInput reading(shown);
   std::string text;
-  if (const int err = detail::readWholeFile(path, text)) throw Error("cannot read '" + shown + "': " + std::strerror(err));
+  detail::readInputFile(path, shown, "", text);
   return parseScene(text, path, std::filesystem::path(path).parent_path().string(), allowOutside);
 }
 

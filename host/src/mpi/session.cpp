@@ -88,7 +88,7 @@ void Session::together(const std::function<void()>& step) {
     message = e.what();
   } catch (const std::bad_alloc&) {
     code = 2;
-    message = "out of memory; try a smaller --size or --chunk, or free memory";
+    message = outOfMemoryMessage();
   } catch (const std::exception& e) {
     code = 3;
     message = std::string("internal error: ") + e.what();

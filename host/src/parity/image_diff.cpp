@@ -12,6 +12,8 @@
 #include "brdfcl/error.hpp"
 #include "brdfcl/image.hpp"
 #include "brdfcl/image_diff.hpp"
+#include "io/exr_header.hpp"
+#include "io/input_limits.hpp"
 #include "io/messages.hpp"
 
 namespace brdfcl {
@@ -123,6 +125,13 @@ ImageDiff diffImages(const std::vector<float>& a, const std::vector<float>& b, i
 
 ImageDiff diffExrFiles(const std::string& pathA, const std::string& pathB, const ImageDiffOptions& options) {
   int wa = 0, ha = 0, wb = 0, hb = 0;
+  // Each image's size from its header, before either is decoded: the diff keeps about 70 bytes
+  // per pixel.
+  for (const std::string* path : {&pathA, &pathB}) {
+    const std::string shown = detail::printable(*path, 300, ' ');
+    const detail::ExrLayout layout = detail::checkExrHeader(*path, shown);
+    detail::checkImagePixels(detail::ImageKind::DiffImage, shown, layout.width, layout.height);
+  }
   const std::vector<float> a = readExrRgb(pathA, wa, ha);
   const std::vector<float> b = readExrRgb(pathB, wb, hb);
   if (wa != wb || ha != hb)

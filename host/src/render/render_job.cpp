@@ -8,6 +8,7 @@
 #include "brdfcl/error.hpp"
 #include "brdfcl/frame_budget.hpp"
 #include "brdfcl/gltf_frame.hpp"
+#include "io/input_limits.hpp"
 
 namespace brdfcl {
 
@@ -27,6 +28,7 @@ void checkRenderSize(int width, int height) {
 
 FramedAsset loadFramedAsset(const std::string& path, const gltf::LoadOptions& options, const std::string& camera,
                             int width, int height) {
+  detail::imagePixelOverride();  // a bad BRDFCL_MAX_IMAGE_PIXELS is refused before the file is read
   FramedAsset f{gltf::load(path, options), {}, width, height};
   if (width == 0) gltf::defaultSize(f.asset, camera, f.width, f.height);
   f.view = gltf::chooseView(f.asset, camera, f.width, f.height);
