@@ -64,7 +64,8 @@
 #define BRDFCL_DECLARE_LANE(name, field) realw name;
 typedef struct {
   BRDFCL_MATERIAL_LANES(BRDFCL_DECLARE_LANE)
-  realw draft; /* 1 for the experimental draft's sheen, else 0 */
+  realw draft;     /* 1 for the experimental draft's sheen, else 0 */
+  realw aniso_ext; /* 1 where BRDFCL_MAT_ANISOTROPY is set (khronos), else 0 */
 } material_lanes;
 
 /* All lanes share one material (grid evaluation, shading): splat. OpenCL C 1.2 has no generic
@@ -74,6 +75,7 @@ typedef struct {
   material_lanes out;                                                        \
   BRDFCL_MATERIAL_LANES(BRDFCL_SPLAT_LANE)                                   \
   out.draft = (realw)((m->flags & BRDFCL_MAT_DRAFT_SHEEN) ? 1.0f : 0.0f);     \
+  out.aniso_ext = (realw)((m->flags & BRDFCL_MAT_ANISOTROPY) ? 1.0f : 0.0f);  \
   return out;
 BRDF_FN material_lanes material_splat(__global const brdfcl_material* m) { BRDFCL_SPLAT_BODY }
 #ifdef __OPENCL_VERSION__
@@ -94,6 +96,7 @@ BRDF_FN material_lanes material_gather(__global const brdfcl_material* materials
   BRDFCL_MATERIAL_LANES(BRDFCL_GATHER_LANE)
   intw flags = AS_INTW(GATHERW((__global const float*)&materials->flags, at));
   out.draft = select((realw)(0.0f), (realw)(1.0f), (flags & (int)BRDFCL_MAT_DRAFT_SHEEN) != 0);
+  out.aniso_ext = select((realw)(0.0f), (realw)(1.0f), (flags & (int)BRDFCL_MAT_ANISOTROPY) != 0);
   return out;
 }
 #endif

@@ -50,6 +50,7 @@ static inline gbuffer_pixel gbuffer_pixel_decode(__global const float* gb, int n
   p.q.ior = 1.5f; /* the G-buffer has no IOR channel: docs/profiles.md */
   p.q.clearcoat = GBP(GB_CLEARCOAT); p.q.clearcoat_roughness = GBP(GB_CLEARCOAT_ROUGHNESS);
   p.q.anisotropy_strength = GBP(GB_ANISO_STRENGTH); p.q.anisotropy_rotation = GBP(GB_ANISO_ROTATION);
+  p.q.anisotropy = p.q.anisotropy_strength > 0.0f; /* no presence channel: docs/profiles.md "khronos" */
 #undef GBP
   return p;
 }

@@ -25,6 +25,7 @@ typedef struct brdfcl_material_params {
   int draft;                                 /* 001's draft: sheen_color = colorFactor * intensityFactor */
   float clearcoat, clearcoat_roughness;
   float anisotropy_strength, anisotropy_rotation;
+  int anisotropy;                            /* KHR_materials_anisotropy is present (khronos reads it) */
   float ior;                                 /* KHR_materials_ior; engine profiles only */
 } brdfcl_material_params;
 
@@ -93,8 +94,11 @@ BRDFCL_PACK_FN brdfcl_material brdfcl_pack_material_profile(brdfcl_material_para
   p.roughness = r;
   p.sheen_weight = 1.0f;
   if (profile == BRDFCL_PROFILE_KHRONOS) {
+    /* The renderer defines MATERIAL_ANISOTROPY when the extension is present, even at strength 0,
+       and then takes the anisotropic path (ab floored at 0.001). */
     const float a = r * r;
-    p.alpha = s > 0.0f ? brdfcl_clampf(a, 0.001f, 1.0f) : a; /* ab: floored on the anisotropic path */
+    if (m.anisotropy) p.flags |= BRDFCL_MAT_ANISOTROPY;
+    p.alpha = m.anisotropy ? brdfcl_clampf(a, 0.001f, 1.0f) : a;
     p.alpha_t = brdfcl_mixf(a, 1.0f, s2);
     const float rs1 = BRDFCL_MAXF(rs, 1e-6f);
     p.sheen_alpha = rs1 * rs1;
@@ -105,7 +109,7 @@ BRDFCL_PACK_FN brdfcl_material brdfcl_pack_material_profile(brdfcl_material_para
     p.roughness = rho;
     p.alpha = a;
     p.alpha_t = brdfcl_mixf(a, 1.0f, s2);
-    const float rhos = brdfcl_clampf(rs, 1e-4f, 1.0f);
+    const float rhos = brdfcl_clampf(rs, 0.07f, 1.0f); /* MaterialNode SHEEN_ROUGHNESS: clamp(0.07, 1) */
     p.sheen_alpha = rhos * rhos;
     p.sheen_roughness = rhos;
     const float rhoc = brdfcl_clampf(rc, 0.045f, 1.0f);

@@ -101,7 +101,7 @@ double mxSheenAlbedo(double mu, double alpha) {
 }
 
 double threejsSheenAlbedo(double mu, double r) {
-  const double rho = std::clamp(r, 1e-4, 1.0);
+  const double rho = std::clamp(r, 0.07, 1.0);
   const double a = -1.9362 + 1.0678 * rho + 0.4573 * rho * rho - 0.8469 / (rho + 0.1);
   const double b = -0.6014 + 0.5538 * rho - 0.4670 * rho * rho - 0.1255 / (rho + 0.1);
   return std::clamp(std::exp(a * mu + b), 0.0, 1.0);
@@ -219,7 +219,8 @@ struct Mat {
   double m, r, rs, cc, rc, s, ior;
   bool sheen;  // ratified sheen present (not draft, max3(c) > 0)
   bool coat;   // clearcoat != 0
-  bool aniso;  // anisotropyStrength > 0
+  bool aniso;     // anisotropyStrength > 0
+  bool anisoExt;  // KHR_materials_anisotropy named (khronos's MATERIAL_ANISOTROPY)
   double maxC;
 };
 
@@ -241,6 +242,7 @@ Mat readMaterial(const MaterialParams& p) {
   q.sheen = !p.draftSheen && q.maxC > 0.0;
   q.coat = p.clearcoat != 0.0f;
   q.aniso = p.anisotropyStrength > 0.0f;
+  q.anisoExt = p.anisotropyExtension || q.aniso;
   return q;
 }
 
@@ -250,7 +252,7 @@ Lobes khronos(const Mat& q, const Geometry& g) {
   const double f0d = f0FromIor(q.ior);
 
   double S;
-  if (q.aniso) {
+  if (q.anisoExt) {  // the anisotropic path on presence, strength 0 included
     const double at = mix(alpha, 1.0, q.s * q.s);  // unfloored, as the engine has it
     const double ab = std::clamp(alpha, 0.001, 1.0);
     const double NdotH = std::clamp(g.NdotH, 0.001, 1.0);
@@ -315,7 +317,7 @@ Lobes threejs(const Mat& q, const Geometry& g) {
 
   double sh = 1.0, sheenDV = 0.0;
   if (q.sheen) {
-    const double rhoS = std::clamp(q.rs, 1e-4, 1.0);
+    const double rhoS = std::clamp(q.rs, 0.07, 1.0);  // the WebGPU path's clamp, not WebGL's 1e-4
     const double alphaS = rhoS * rhoS;
     sheenDV = D_CharlieS(alphaS, std::max(1.0 - g.NdotH * g.NdotH, 0.0078125)) *
               std::min(V_Neubelt(g.NdotL, g.NdotV), 1.0);
@@ -345,13 +347,11 @@ Lobes threejs(const Mat& q, const Geometry& g) {
   return out;
 }
 
-// Filament's saturateMediump(x) = min(x, MEDIUMP_FLT_MAX = 65504), applied to its D and V terms.
-double mediump(double x) { return std::min(x, 65504.0); }
-
-// Filament's GGX D: k = alpha / (1 - NdotH^2 + (NdotH alpha)^2), D = saturateMediump(k^2 / pi).
+// Filament's GGX D: k = min(alpha / (1 - NdotH^2 + (NdotH alpha)^2), 453.5), D = k^2 / pi.
+// Its V, Kelemen and anisotropic D carry no cap on desktop.
 double D_Filament(double alpha, double NdotH) {
-  const double k = alpha / (1.0 - NdotH * NdotH + (NdotH * alpha) * (NdotH * alpha));
-  return mediump(k * k / kPi);
+  const double k = std::min(alpha / (1.0 - NdotH * NdotH + (NdotH * alpha) * (NdotH * alpha)), 453.5);
+  return k * k / kPi;
 }
 
 // ---- filament: Filament (desktop) ----
@@ -370,11 +370,11 @@ Lobes filament(const Mat& q, const Geometry& g) {
     // Kulla's parametrisation with A = s (brdfcl's mapping of glTF strength).
     const double at = std::max(alpha * (1.0 + q.s), 0.002025);
     const double ab = std::max(alpha * (1.0 - q.s), 0.002025);
-    DV = mediump(D_Burley(at, ab, dot3(g.H, g.T), dot3(g.H, g.B), g.NdotH)) *
-         mediump(0.5 / heitzDenominator(at, ab, g.NdotL, g.NdotV, dot3(g.T, g.V), dot3(g.B, g.V), dot3(g.T, g.L),
-                                        dot3(g.B, g.L)));
+    DV = D_Burley(at, ab, dot3(g.H, g.T), dot3(g.H, g.B), g.NdotH) *
+         (0.5 / heitzDenominator(at, ab, g.NdotL, g.NdotV, dot3(g.T, g.V), dot3(g.B, g.V), dot3(g.T, g.L),
+                                 dot3(g.B, g.L)));
   } else {
-    DV = D_Filament(alpha, g.NdotH) * mediump(V_GGXp(alpha, g.NdotL, g.NdotV));
+    DV = D_Filament(alpha, g.NdotH) * V_GGXp(alpha, g.NdotL, g.NdotV);
   }
   const double Ess = threejsDfgEss(rho, g.NdotV);
 
@@ -392,7 +392,7 @@ Lobes filament(const Mat& q, const Geometry& g) {
     const double rhoC = std::clamp(q.rc, 0.045, 1.0);
     const double alphaC = rhoC * rhoC;
     const double Fcc = q.cc * F_SchlickP(0.04, 1.0, g.VdotH);  // on L.H, not N.V
-    coat = Fcc * D_Filament(alphaC, g.NdotH) * mediump(0.25 / (g.VdotH * g.VdotH));  // Kelemen V
+    coat = Fcc * D_Filament(alphaC, g.NdotH) * (0.25 / (g.VdotH * g.VdotH));  // Kelemen V
     k = 1.0 - Fcc;
   }
 
@@ -467,16 +467,18 @@ Lobes materialx(const Mat& q, const Geometry& g) {
   const double DV = D_Burley(alphaT, alphaB, dot3(g.H, g.T), dot3(g.H, g.B), g.NdotH) *
                     V_GGXp(alphaBar, g.NdotL, g.NdotV);
 
-  // comp(F, a') = 1 + F (1 - E) / E, E = A + B of the fit at (NdotV, a').
-  auto comp = [&](double F, double a) {
+  // comp = 1 + Favg (1 - E) / E, E = A + B of the fit at (NdotV, a'), Favg the hemispherical
+  // cosine-weighted average of Schlick's F: the integral of 2 mu (1 - mu)^5 over [0, 1] is 1/21.
+  auto comp = [&](double F0, double F90, double a) {
     const auto ab = mxGgxAlbedoFit(g.NdotV, a);
     const double E = ab[0] + ab[1];
-    return 1.0 + F * (1.0 - E) / E;
+    const double Favg = F0 + (F90 - F0) / 21.0;
+    return 1.0 + Favg * (1.0 - E) / E;
   };
   const auto fitBase = mxGgxAlbedoFit(g.NdotV, alphaBar);
 
   const double Fd = F_SchlickP(f0ior, 1.0, g.VdotH);
-  const double compD = comp(Fd, alphaBar);
+  const double compD = comp(f0ior, 1.0, alphaBar);
   const double specD = DV * Fd * compD;
   const double td = 1.0 - (f0ior * fitBase[0] + fitBase[1]) * compD;
 
@@ -491,7 +493,7 @@ Lobes materialx(const Mat& q, const Geometry& g) {
   if (q.coat) {
     const double alphaC = std::clamp(q.rc * q.rc, 1e-8, 1.0);
     const double Fc = F_diel(g.VdotH, 1.5);
-    const double compC = comp(Fc, alphaC);
+    const double compC = comp(F_diel(1.0, 1.5), 1.0, alphaC);  // the coat's normal-incidence F
     const auto fitC = mxGgxAlbedoFit(g.NdotV, alphaC);
     coat = q.cc * D_GGXp(alphaC, g.NdotH) * V_GGXp(alphaC, g.NdotL, g.NdotV) * Fc * compC;
     tc = 1.0 - q.cc * (0.04 * fitC[0] + fitC[1]) * compC;
@@ -500,7 +502,7 @@ Lobes materialx(const Mat& q, const Geometry& g) {
   Lobes out;
   for (int i = 0; i < 3; ++i) {
     const double Fm = F_SchlickP(q.b[i], 1.0, g.VdotH);
-    const double specM = DV * Fm * comp(Fm, alphaBar);
+    const double specM = DV * Fm * comp(q.b[i], 1.0, alphaBar);
     out.diffuse[i] = tc * ts * (1.0 - q.m) * td * q.b[i] / kPi;
     out.specular[i] = tc * ts * ((1.0 - q.m) * specD + q.m * specM);
     out.sheen[i] = tc * q.c[i] * sheenDV;
@@ -547,6 +549,14 @@ Rgb profileBrdf(const MaterialParams& m, Profile p, Lobe lobe, Vec3 L, Vec3 V) {
   const double theta = m.anisotropyRotation;
   g.T = {std::cos(theta), std::sin(theta), 0.0};
   g.B = {-std::sin(theta), std::cos(theta), 0.0};
+
+  // Each engine's own cosine clamps: Khronos and three.js clamp to [0, 1] (no floor), Filament
+  // floors N.V at 1e-4 (clampNoV) and saturates N.L, MaterialX clamps both to [1e-8, 1].
+  if (p == Profile::Filament) g.NdotV = std::max(g.NdotV, 1e-4);
+  if (p == Profile::Materialx) {
+    g.NdotL = std::max(g.NdotL, 1e-8);
+    g.NdotV = std::max(g.NdotV, 1e-8);
+  }
 
   const Mat q = readMaterial(m);
   switch (p) {

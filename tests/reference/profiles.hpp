@@ -57,7 +57,8 @@ std::array<double, 2> mxGgxAlbedoFit(double mu, double alpha);
 double mxSheenAlbedo(double mu, double alpha);
 
 // three.js's analytic sheen albedo fit Ê(mu) = clamp(exp(a mu + b), 0, 1). r is the perceptual
-// sheen roughness; it is clamped to [1e-4, 1] here as the profile does (a no-op in range).
+// sheen roughness; it is clamped to [0.07, 1] here as the profile does (MaterialNode's
+// SHEEN_ROUGHNESS clamp).
 double threejsSheenAlbedo(double mu, double r);
 
 }  // namespace ref

@@ -305,15 +305,16 @@ TEST(ProfileReference, FilamentSheenScalingIndependentOfLight) {
 }
 
 // Closed form of the coat at L = V = N: cc 0.04 D(alpha_c, 1) 0.25 with Filament's
-// D = min(1/(pi alpha^2), 65504) there (saturateMediump); r_c = 0.01 is floored to 0.045, where
-// 1/(pi alpha^2) = 78 000 hits the cap.
+// D = min(1/alpha, 453.5)^2 / pi there (k capped at 453.5); r_c = 0.01 is floored to 0.045, where
+// 1/alpha = 494 hits the cap.
 TEST(ProfileReference, FilamentCoatClosedFormAtNormal) {
   MaterialParams m;
   m.clearcoat = 0.8f;
   for (float rc : {0.5f, 0.2f, 0.01f}) {
     m.clearcoatRoughness = rc;
     const double rho = std::max(double(rc), 0.045), alphaC = rho * rho;
-    const double want = double(m.clearcoat) * 0.04 * std::min(1.0 / (kPi * alphaC * alphaC), 65504.0) * 0.25;
+    const double k = std::min(1.0 / alphaC, 453.5);
+    const double want = double(m.clearcoat) * 0.04 * (k * k / kPi) * 0.25;
     EXPECT_LE(relDiff(ref::profileBrdf(m, Profile::Filament, Lobe::Clearcoat, kN, kN)[0], want), 1e-12)
         << "r_c " << rc;
   }
@@ -442,9 +443,9 @@ TEST(ProfileReference, FitsStayInRange) {
 
 // ---- materialx ----
 
-// layer(): f = coat + t_c (sheen + t_s base) with t_c = 1 - cc (0.04 A_c + B_c) comp(F_c, alpha_c),
-// F_c the exact dielectric Fresnel at V.H (ior 1.5). Every non-coat lobe of a coated material is
-// t_c times the uncoated one.
+// layer(): f = coat + t_c (sheen + t_s base) with t_c = 1 - cc (0.04 A_c + B_c) comp_c,
+// comp_c = 1 + Favg (1 - E)/E tinted by the average Fresnel Favg = 0.04 + 0.96/21 of the ior-1.5
+// coat. Every non-coat lobe of a coated material is t_c times the uncoated one.
 TEST(ProfileReference, MaterialxCoatThroughput) {
   MaterialParams m;
   m.metallic = 0.3f;
@@ -456,15 +457,11 @@ TEST(ProfileReference, MaterialxCoatThroughput) {
   MaterialParams coated = m;
   coated.clearcoat = 0.75f;
   const Vec3 L = dir(0.65, 0.9), V = dir(0.55, 3.6);
-  const Vec3 Hu{L.x + V.x, L.y + V.y, L.z + V.z};
-  const double VdotH = (V.x * Hu.x + V.y * Hu.y + V.z * Hu.z) / std::sqrt(Hu.x * Hu.x + Hu.y * Hu.y + Hu.z * Hu.z);
-  const double eta = 1.5, c = VdotH, g = std::sqrt(eta * eta + c * c - 1);
-  const double Fc = 0.5 * std::pow((g - c) / (g + c), 2) *
-                    (1 + std::pow((c * (g + c) - 1) / (c * (g - c) + 1), 2));
   const double alphaC = double(m.clearcoatRoughness) * m.clearcoatRoughness;
   const auto ab = ref::mxGgxAlbedoFit(V.z, alphaC);
   const double E = ab[0] + ab[1];
-  const double tc = 1 - 0.75 * (0.04 * ab[0] + ab[1]) * (1 + Fc * (1 - E) / E);
+  const double favg = 0.04 + 0.96 / 21.0;
+  const double tc = 1 - 0.75 * (0.04 * ab[0] + ab[1]) * (1 + favg * (1 - E) / E);
   EXPECT_GT(tc, 0.9);
   EXPECT_LT(tc, 1.0);
   for (Lobe l : {Lobe::Diffuse, Lobe::Specular, Lobe::Sheen}) {
@@ -472,10 +469,10 @@ TEST(ProfileReference, MaterialxCoatThroughput) {
     const Rgb b = ref::profileBrdf(m, Profile::Materialx, l, L, V);
     for (int i = 0; i < 3; ++i) EXPECT_LE(relDiff(a[i], tc * b[i]), 1e-12) << brdfcl::toString(l);
   }
-  // At L = V = N the exact Fresnel is 0.04 and V_GGX = 0.25: coat = cc D 0.25 0.04 comp(0.04).
+  // At L = V = N the exact Fresnel is 0.04 and V_GGX = 0.25: coat = cc D 0.25 0.04 comp_c.
   const auto abN = ref::mxGgxAlbedoFit(1.0, alphaC);
   const double EN = abN[0] + abN[1];
-  const double want = 0.75 / (kPi * alphaC * alphaC) * 0.25 * 0.04 * (1 + 0.04 * (1 - EN) / EN);
+  const double want = 0.75 / (kPi * alphaC * alphaC) * 0.25 * 0.04 * (1 + favg * (1 - EN) / EN);
   EXPECT_LE(relDiff(ref::profileBrdf(coated, Profile::Materialx, Lobe::Clearcoat, kN, kN)[0], want), 1e-12);
 }
 

@@ -40,6 +40,9 @@ struct MaterialParams {
   // KHR_materials_anisotropy (002_aa19eb57033fc98d.txt).
   float anisotropyStrength = 0.0f;
   float anisotropyRotation = 0.0f;  // radians, counter-clockwise from T in the tangent plane
+  // Whether the material names KHR_materials_anisotropy at all: the khronos profile takes its
+  // anisotropic path on presence, strength 0 included (docs/profiles.md "khronos").
+  bool anisotropyExtension = false;
 
   // KHR_materials_ior. The spec profile's f has no IOR input (F0 stays 0.04); the engine profiles
   // read it as their engines do (docs/profiles.md).

@@ -158,7 +158,7 @@ const SheenAlbedoTable& Evaluator::sheenAlbedo() {
 Evaluator::Batch Evaluator::prepare(const std::vector<MaterialParams>& materials) {
   if (materials.empty()) throw Error("no materials to evaluate");
   for (std::size_t i = 0; i < materials.size(); ++i) checkMaterial(materials[i], i);
-  const auto features = featuresOf(materials);
+  const auto features = featuresOf(materials, options_.profile);
   Batch b;
   for (const auto& m : materials) b.packed.push_back(packMaterial(m, options_.profile));
   if (features.needsSheenAlbedo(options_)) {

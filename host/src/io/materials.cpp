@@ -208,6 +208,7 @@ class MaterialReader {
       }
       const std::string anPath = extPath + ".KHR_materials_anisotropy";
       if (const json* an = object(*ext, "KHR_materials_anisotropy", anPath)) {
+        p.anisotropyExtension = true;
         optional(*an, "anisotropyStrength", anPath,
                  [&](const json& v, const std::string& at) { p.anisotropyStrength = number(v, at, Range::Unit); });
         optional(*an, "anisotropyRotation", anPath,

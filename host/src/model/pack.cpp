@@ -87,6 +87,7 @@ brdfcl_material packMaterial(const MaterialParams& m, Profile profile) {
   q.clearcoat_roughness = m.clearcoatRoughness;
   q.anisotropy_strength = m.anisotropyStrength;
   q.anisotropy_rotation = m.anisotropyRotation;
+  q.anisotropy = m.anisotropyExtension || m.anisotropyStrength > 0.0f;
   q.ior = m.ior;
   return brdfcl_pack_material_profile(q, profileDefine(profile));
 }
@@ -138,7 +139,7 @@ EvalOptions sheenTableOptions(const EvalOptions& o) {
   return t;
 }
 
-FeatureSet featuresOf(const std::vector<MaterialParams>& materials) {
+FeatureSet featuresOf(const std::vector<MaterialParams>& materials, Profile profile) {
   FeatureSet f;
   for (const auto& m : materials) {
     const bool sheen = m.draftSheen ? (m.draftIntensity > 0.0f && max3(m.draftColor) > 0.0f) : max3(m.sheenColor) > 0.0f;
@@ -146,7 +147,8 @@ FeatureSet featuresOf(const std::vector<MaterialParams>& materials) {
     f.draft |= sheen && m.draftSheen;
     f.ratifiedSheen |= sheen && !m.draftSheen;
     f.clearcoat |= m.clearcoat > 0.0f;
-    f.anisotropy |= m.anisotropyStrength > 0.0f;
+    // khronos takes its anisotropic path whenever the extension is present.
+    f.anisotropy |= m.anisotropyStrength > 0.0f || (profile == Profile::Khronos && m.anisotropyExtension);
   }
   return f;
 }

@@ -29,7 +29,7 @@ struct FeatureSet {
   bool needsSheenAlbedo(const EvalOptions& o) const;
   bool ratifiedSheen = false;
 };
-FeatureSet featuresOf(const std::vector<MaterialParams>& materials);
+FeatureSet featuresOf(const std::vector<MaterialParams>& materials, Profile profile = Profile::Spec);
 
 // The options whose sheen E table a batch reads: the user's under Spec; under an engine profile
 // the table that engine's sheen scaling uses (docs/profiles.md "Tables"). Lobe and profile kept.

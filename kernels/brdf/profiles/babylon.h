@@ -10,7 +10,7 @@
 BRDF_FN rgbw brdf_profile(const material_lanes m, vec3w L, vec3w V, vec3w Lc, vec3w Vc,
                           __global const float* tables, int e_size) {
   __global const float* dfg = tables + e_size * e_size;
-  engine_geometry g = engine_geometry_of(L, V);
+  engine_geometry g = engine_geometry_of(L, V, BRDFCL_MIN_COS, BRDFCL_MIN_COS);
 #if BRDFCL_HAS_ANISOTROPY
   realw S = D_BurleyRotated(m, g, g.hz) * 0.5f / Lambda_HeitzRotated(m, g, L, V);
 #else
@@ -36,7 +36,7 @@ BRDF_FN rgbw brdf_profile(const material_lanes m, vec3w L, vec3w V, vec3w Lc, ve
   realw coat = 0.0f;
 #if BRDFCL_HAS_CLEARCOAT
   {
-    engine_geometry gc = engine_geometry_of(Lc, Vc);
+    engine_geometry gc = engine_geometry_of(Lc, Vc, BRDFCL_MIN_COS, BRDFCL_MIN_COS);
     realw Fc = m.clearcoat * F_Schlick90(0.04f, 1.0f, gc.s5);
     realw k = 1.0f - Fc;
     scale_below(&diffuse, &specular, &sheen, k);

@@ -11,16 +11,19 @@
 /* The angles a profile needs, from unit L and V in one frame (N = +Z). sin2/cos2 of the half
    angle come from the unnormalized h, so 1 - N.H^2 is exact near N.H = 1. */
 typedef struct {
-  realw NdotL, NdotV;     /* floored at BRDFCL_MIN_COS, as spec's layers floor them */
+  realw NdotL, NdotV;     /* floored where the engine floors them (min_nl, min_nv), not at spec's 1e-4 */
   realw hx, hy, hz;       /* unit H */
   realw sin2, cos2;       /* of the half angle */
   realw VdotH, s5;        /* s5 = (1 - V.H)^5 */
 } engine_geometry;
 
-BRDF_FN engine_geometry engine_geometry_of(vec3w L, vec3w V) {
+/* Each engine clamps its cosines its own way (docs/profiles.md "Conventions"): min_nl and min_nv
+   are its floors, 0 for an engine that only saturates. f = 0 at L.z <= 0 or V.z <= 0 is applied
+   by the caller; the floor matters for the clearcoat frame and for cosines in (0, 1e-4). */
+BRDF_FN engine_geometry engine_geometry_of(vec3w L, vec3w V, float min_nl, float min_nv) {
   engine_geometry g;
-  g.NdotL = max(L.z, BRDFCL_MIN_COS);
-  g.NdotV = max(V.z, BRDFCL_MIN_COS);
+  g.NdotL = max(L.z, min_nl);
+  g.NdotV = max(V.z, min_nv);
   vec3w h = half_vector(L, V);
   realw hxy2 = h.x * h.x + h.y * h.y, hn2 = h.z * h.z, h2 = hxy2 + hn2;
   realw inv_h = rsqrt(h2);

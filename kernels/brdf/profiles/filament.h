@@ -1,29 +1,28 @@
 /* --profile filament: Filament's standard model, desktop quality (surface_brdf.fs@04d50d42,
    surface_shading_model_standard.fs@1b47d187), docs/profiles.md "filament": base roughness raised
    by the coat, f90 from f0, Lambert without Fresnel, energy compensation, view-only sheen scaling,
-   Kelemen coat with F on L.H, Kulla anisotropy. saturateMediump caps D and V at 65504. */
+   Kelemen coat with F on L.H, Kulla anisotropy. The isotropic D caps k at 453.5 (so D at
+   453.5^2/pi); V, Kelemen and the anisotropic D have no cap on desktop (PREVENT_DIV0 is n / d). */
 #ifndef BRDFCL_PROFILE_FILAMENT_H
 #define BRDFCL_PROFILE_FILAMENT_H
 
 #include "brdf/profiles/engine_terms.h"
 
-#define BRDFCL_MEDIUMP_MAX 65504.0f
-
+/* D_GGX: k = min(alpha / (1 - N.H^2 + (N.H alpha)^2), 453.5), D = k^2 / pi. */
 BRDF_FN realw D_GGX_Filament(realw sin2, realw cos2, realw alpha) {
-  realw k = alpha / (sin2 + cos2 * alpha * alpha);
-  return min(k * k * M_1_PI_F, BRDFCL_MEDIUMP_MAX);
+  realw k = min(alpha / (sin2 + cos2 * alpha * alpha), 453.5f);
+  return k * k * M_1_PI_F;
 }
 
 BRDF_FN rgbw brdf_profile(const material_lanes m, vec3w L, vec3w V, vec3w Lc, vec3w Vc,
                           __global const float* tables, int e_size) {
   __global const float* dfg = tables + e_size * e_size;
-  engine_geometry g = engine_geometry_of(L, V);
+  engine_geometry g = engine_geometry_of(L, V, 0.0f, 1e-4f); /* saturate(N.L), clampNoV */
 #if BRDFCL_HAS_ANISOTROPY
   /* alpha_t = alpha (1 + A), alpha = alpha (1 - A): equal at A = 0, the isotropic lobe. */
-  realw S = min(D_BurleyRotated(m, g, g.hz), BRDFCL_MEDIUMP_MAX) * min(0.5f / Lambda_HeitzRotated(m, g, L, V), BRDFCL_MEDIUMP_MAX);
+  realw S = D_BurleyRotated(m, g, g.hz) * 0.5f / Lambda_HeitzRotated(m, g, L, V);
 #else
-  realw S = D_GGX_Filament(g.sin2, g.cos2, m.alpha) *
-            min(0.5f / Lambda_SmithSum(g.NdotL, g.NdotV, m.alpha), BRDFCL_MEDIUMP_MAX);
+  realw S = D_GGX_Filament(g.sin2, g.cos2, m.alpha) * 0.5f / Lambda_SmithSum(g.NdotL, g.NdotV, m.alpha);
 #endif
   rgbw f0 = f0_metallic(m);
   realw f90 = clamp(16.5f * (f0.r + f0.g + f0.b), 0.0f, 1.0f);
@@ -43,11 +42,11 @@ BRDF_FN rgbw brdf_profile(const material_lanes m, vec3w L, vec3w V, vec3w Lc, ve
   realw coat = 0.0f;
 #if BRDFCL_HAS_CLEARCOAT
   {
-    engine_geometry gc = engine_geometry_of(Lc, Vc);
+    engine_geometry gc = engine_geometry_of(Lc, Vc, 0.0f, 1e-4f);
     realw Fcc = m.clearcoat * F_Schlick90(0.04f, 1.0f, gc.s5);
     realw k = 1.0f - Fcc;
     scale_below(&diffuse, &specular, &sheen, k);
-    coat = Fcc * D_GGX_Filament(gc.sin2, gc.cos2, m.clearcoat_alpha) * min(V_Kelemen(gc.VdotH), BRDFCL_MEDIUMP_MAX);
+    coat = Fcc * D_GGX_Filament(gc.sin2, gc.cos2, m.clearcoat_alpha) * V_Kelemen(gc.VdotH);
   }
 #endif
   return select_lobe(diffuse, specular, sheen, coat);

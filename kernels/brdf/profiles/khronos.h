@@ -8,14 +8,15 @@
 
 BRDF_FN rgbw brdf_profile(const material_lanes m, vec3w L, vec3w V, vec3w Lc, vec3w Vc,
                           __global const float* tables, int e_size) {
-  engine_geometry g = engine_geometry_of(L, V);
+  engine_geometry g = engine_geometry_of(L, V, 0.0f, 0.0f);
   realw S = D_GGX_HalfAngle(g.sin2, g.cos2, m.alpha) * 0.5f / Lambda_SmithSum(g.NdotL, g.NdotV, m.alpha);
 #if BRDFCL_HAS_ANISOTROPY
   {
-    /* BRDF_specularGGXAnisotropy: ab floored at 0.001 (packed), N.H clamped to [0.001, 1], V <= 1. */
+    /* BRDF_specularGGXAnisotropy, taken whenever the extension is present (MATERIAL_ANISOTROPY),
+       strength 0 included: ab floored at 0.001 (packed), N.H clamped to [0.001, 1], V <= 1. */
     realw D = D_BurleyRotated(m, g, clamp(g.hz, 0.001f, 1.0f));
     realw Va = 0.5f / Lambda_HeitzRotated(m, g, L, V);
-    S = select(S, D * min(Va, 1.0f), m.aniso_strength > 0.0f);
+    S = select(S, D * min(Va, 1.0f), m.aniso_ext > 0.0f);
   }
 #endif
   realw Fd = F_Schlick90(m.ior_f0, 1.0f, g.s5);
@@ -38,7 +39,7 @@ BRDF_FN rgbw brdf_profile(const material_lanes m, vec3w L, vec3w V, vec3w Lc, ve
   realw coat = 0.0f;
 #if BRDFCL_HAS_CLEARCOAT
   {
-    engine_geometry gc = engine_geometry_of(Lc, Vc);
+    engine_geometry gc = engine_geometry_of(Lc, Vc, 0.0f, 0.0f);
     realw Fc = F_Schlick90(m.ior_f0, 1.0f, pow5w(1.0f - Vc.z));
     realw C = D_GGX_HalfAngle(gc.sin2, gc.cos2, m.clearcoat_alpha) * 0.5f /
               Lambda_SmithSum(gc.NdotL, gc.NdotV, m.clearcoat_alpha);

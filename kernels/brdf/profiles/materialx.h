@@ -1,17 +1,23 @@
-/* --profile materialx: MaterialX gltf_pbr (1.39, nodedef 2.0.1, HEAD 4177b2cb), docs/profiles.md
+/* --profile materialx: MaterialX gltf_pbr (1.39, nodedef 2.0.1, 4177b2cb), docs/profiles.md
    "materialx": layers by directional-albedo throughput, GGX energy compensation from the analytic
-   albedo fit, isotropic Smith on sqrt(alpha_t alpha_b), exact dielectric Fresnel on the coat. */
+   albedo fit tinted by the average Fresnel, isotropic Smith on sqrt(alpha_t alpha_b), exact
+   dielectric Fresnel on the coat. */
 #ifndef BRDFCL_PROFILE_MATERIALX_H
 #define BRDFCL_PROFILE_MATERIALX_H
 
 #include "brdf/profiles/engine_terms.h"
 
-/* mx_ggx_energy_compensation: 1 + F (1 - E) / E with E = A + B of the fit. */
-BRDF_FN realw comp_MaterialX(realw F, realw E) { return 1.0f + F * (1.0f - E) / E; }
+/* mx_ggx_energy_compensation: 1 + Favg (1 - E) / E with E = A + B of the fit and Favg the
+   cosine-weighted hemispherical average of a Schlick Fresnel, F0 + (F90 - F0) / 21 (mx_fresnel_average,
+   MaterialX ce2398cde). */
+BRDF_FN realw comp_MaterialX(realw F0, realw F90, realw E) {
+  realw favg = F0 + (F90 - F0) * (1.0f / 21.0f);
+  return 1.0f + favg * (1.0f - E) / E;
+}
 
 BRDF_FN rgbw brdf_profile(const material_lanes m, vec3w L, vec3w V, vec3w Lc, vec3w Vc,
                           __global const float* tables, int e_size) {
-  engine_geometry g = engine_geometry_of(L, V);
+  engine_geometry g = engine_geometry_of(L, V, 1e-8f, 1e-8f); /* clamp(dot, M_FLOAT_EPS, 1) */
 #if BRDFCL_HAS_ANISOTROPY
   realw D = D_BurleyRotated(m, g, g.hz);
   realw avg = sqrt(m.alpha_t * m.alpha);
@@ -25,14 +31,14 @@ BRDF_FN rgbw brdf_profile(const material_lanes m, vec3w L, vec3w V, vec3w Lc, ve
   realw E = A + B;
   realw f0 = m.ior_f0;
   realw Fd = F_Schlick90(f0, 1.0f, g.s5);
-  realw comp_d = comp_MaterialX(Fd, E);
+  realw comp_d = comp_MaterialX(f0, 1.0f, E);
   realw spec_d = DV * Fd * comp_d;
   realw t_d = 1.0f - (f0 * A + B) * comp_d;
   realw Fr = F_Schlick90(m.base_r, 1.0f, g.s5), Fg = F_Schlick90(m.base_g, 1.0f, g.s5), Fb = F_Schlick90(m.base_b, 1.0f, g.s5);
   realw dw = 1.0f - m.metallic;
-  rgbw specular = {dw * spec_d + m.metallic * DV * Fr * comp_MaterialX(Fr, E),
-                   dw * spec_d + m.metallic * DV * Fg * comp_MaterialX(Fg, E),
-                   dw * spec_d + m.metallic * DV * Fb * comp_MaterialX(Fb, E)};
+  rgbw specular = {dw * spec_d + m.metallic * DV * Fr * comp_MaterialX(m.base_r, 1.0f, E),
+                   dw * spec_d + m.metallic * DV * Fg * comp_MaterialX(m.base_g, 1.0f, E),
+                   dw * spec_d + m.metallic * DV * Fb * comp_MaterialX(m.base_b, 1.0f, E)};
   realw kd = dw * t_d * M_1_PI_F;
   rgbw diffuse = {kd * m.base_r, kd * m.base_g, kd * m.base_b};
   rgbw sheen = rgbw_splat(0.0f);
@@ -46,11 +52,11 @@ BRDF_FN rgbw brdf_profile(const material_lanes m, vec3w L, vec3w V, vec3w Lc, ve
   realw coat = 0.0f;
 #if BRDFCL_HAS_CLEARCOAT
   {
-    engine_geometry gc = engine_geometry_of(Lc, Vc);
+    engine_geometry gc = engine_geometry_of(Lc, Vc, 1e-8f, 1e-8f);
     realw Ac, Bc;
     DFG_MaterialXFit(gc.NdotV, m.clearcoat_alpha, &Ac, &Bc);
     realw Fc = F_Dielectric(gc.VdotH, 1.5f);
-    realw comp_c = comp_MaterialX(Fc, Ac + Bc);
+    realw comp_c = comp_MaterialX(0.04f, 1.0f, Ac + Bc); /* F_diel(1, 1.5) = 0.04, F90 = 1 */
     realw t_c = 1.0f - m.clearcoat * (0.04f * Ac + Bc) * comp_c;
     scale_below(&diffuse, &specular, &sheen, t_c);
     coat = m.clearcoat * D_GGX_HalfAngle(gc.sin2, gc.cos2, m.clearcoat_alpha) * 0.5f /

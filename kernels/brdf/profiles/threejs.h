@@ -9,7 +9,7 @@
 BRDF_FN rgbw brdf_profile(const material_lanes m, vec3w L, vec3w V, vec3w Lc, vec3w Vc,
                           __global const float* tables, int e_size) {
   __global const float* dfg = tables + e_size * e_size;
-  engine_geometry g = engine_geometry_of(L, V);
+  engine_geometry g = engine_geometry_of(L, V, 0.0f, 0.0f);
 #if BRDFCL_HAS_ANISOTROPY
   /* With strength 0 (alpha_t = alpha) this is the isotropic lobe. */
   realw S = D_BurleyRotated(m, g, g.hz) * 0.5f / max(Lambda_HeitzRotated(m, g, L, V), 1e-6f);
@@ -35,7 +35,7 @@ BRDF_FN rgbw brdf_profile(const material_lanes m, vec3w L, vec3w V, vec3w Lc, ve
   realw coat = 0.0f;
 #if BRDFCL_HAS_CLEARCOAT
   {
-    engine_geometry gc = engine_geometry_of(Lc, Vc);
+    engine_geometry gc = engine_geometry_of(Lc, Vc, 0.0f, 0.0f);
     realw Fcc = F_SchlickSG(0.04f, 1.0f, Fs_SphericalGaussian(Vc.z));
     realw C = F_SchlickSG(0.04f, 1.0f, Fs_SphericalGaussian(gc.VdotH)) *
               D_GGX_HalfAngle(gc.sin2, gc.cos2, m.clearcoat_alpha) * 0.5f /
