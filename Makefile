@@ -15,7 +15,8 @@ configure: deps
 build: configure
 	@cmake --build --preset $(PRESET) -j $(JOBS)
 
-# The C++ tests, then the Python package's (tests/python) in build/venv-python: pinned build
+# The C++ tests, the engine check's harness on its own snippets (scripts/engine-check --self-test;
+# the check itself needs engine checkouts, docs/profiles.md), then the Python package's (tests/python) in build/venv-python: pinned build
 # and test tools (python/requirements.txt), the package built by `pip install .` into a persistent
 # build dir (build/python-<tag>/: only what changed recompiles).
 PYTHON ?= /usr/bin/python3
@@ -23,6 +24,7 @@ VENV := build/venv-python
 
 test: build
 	@build/bin/brdfcl-tests --gtest_brief=1
+	@scripts/engine-check --self-test >/dev/null || scripts/engine-check --self-test
 	@$(MAKE) --no-print-directory test-python
 
 test-python: build
