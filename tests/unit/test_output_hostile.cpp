@@ -293,19 +293,16 @@ TEST(SameFile, EveryCommandRefusesAnOutputThatIsAnInputOrAnotherOutput) {
   };
   fs::create_directory(d.path("sub"));
   const auto before = d.list();
-  std::vector<std::string> contents;
+  std::map<std::string, std::string> contents;
   for (const auto& n : before)
-    if (fs::is_regular_file(d.path(n))) contents.push_back(slurp(d.path(n)));
+    if (fs::is_regular_file(d.path(n))) contents[n] = slurp(d.path(n));
   for (const auto& c : cases) {
     const RunResult r = cli(c.args, d, logs);
     EXPECT_EQ(r.status, 2) << c.args[0] << " " << c.message << "\n" << r.describe();
     EXPECT_EQ(r.err, "brdfcl: " + c.message + "\n") << r.describe();
   }
   EXPECT_EQ(d.list(), before) << "a refused run left or removed files";
-  std::vector<std::string> after;
-  for (const auto& n : before)
-    if (fs::is_regular_file(d.path(n))) after.push_back(slurp(d.path(n)));
-  EXPECT_EQ(after, contents) << "a refused run changed a file";
+  for (const auto& [n, content] : contents) EXPECT_TRUE(slurp(d.path(n)) == content) << "a refused run changed " << n;
 }
 
 TEST(SameFile, StreamsAndDistinctFilesAreNotRefused) {
