@@ -58,6 +58,7 @@ void addDiffCommand(CLI::App& app) {
       if (!endsWithPng(args->out))
         throw Error("--out '" + args->out + "': the picture is written as PNG; name it .png");
       checkOutputPath("--out", args->out);
+      checkDistinctFiles({{"A", args->a, false}, {"B", args->b, false}, {"--out", args->out, true}});
     }
 
     ImageDiffOptions o;

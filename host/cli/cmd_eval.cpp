@@ -119,6 +119,7 @@ void addEvalCommand(CLI::App& app) {
                   "modulo the device count), or all, or a list such as 0,2 to split the work across devices");
   cmd->callback([args] {
     checkResultsPath("--out", args->out);
+    checkDistinctFiles({{"--materials", args->materials, false}, {"--samples", args->samples, false}, {"--out", args->out, true}});
     EvalOptions o = modelOptions(args->model);
     o.lobe = parseLobe(args->lobe);
     if (args->chunk < 1 || args->chunk > static_cast<long long>(StreamOptions::kMaxChunk))

@@ -173,6 +173,13 @@ struct LightingArgs {
     cmd->add_option("--env-rotation", envRotation, "environment rotation about +Y in radians (default 0)");
     cmd->add_option("--lights", lights, "gltf (the scene's own lights: a file's KHR lights, else a default key light; the spheres' key and fill), none, or SCENE.json");
   }
+  // The files among the choices ("" for the built-in ones), for checkDistinctFiles.
+  std::string environmentFile() const {
+    for (const char* builtin : {"builtin", "sky", "studio", "uniform"})
+      if (environment == builtin) return "";
+    return environment;
+  }
+  std::string lightsFile() const { return lights == "gltf" || lights == "none" ? "" : lights; }
   Environment environmentChoice(CLI::App* cmd) {
     environmentGiven = cmd->count("--environment") || cmd->count("--env-intensity") || cmd->count("--env-rotation");
     return parseEnvironmentSpec(environment, envIntensity, envRotation);
@@ -270,6 +277,7 @@ void addRenderCommands(CLI::App& app) {
     cmd->add_option("--device", a->device, "device index or name substring, or all, or a list such as 0,2 to shade row bands on several devices");
     cmd->callback([a, cmd] {
       checkOutput("--out", a->out, ".exr");
+      checkDistinctFiles({{"--gltf", a->gltf.path, false}, {"--out", a->out, true}});
       if (!a->gltf.path.empty()) {
         if (cmd->count("--scene")) throw Error("--scene and --gltf are alternatives; give one");
         const LoadedAsset l = loadAsset(a->gltf);
@@ -328,6 +336,11 @@ void addRenderCommands(CLI::App& app) {
         checkOutput("--out", a->out, png == a->out ? ".png" : ".exr");
         checkOutput("--png", a->png, ".png");
         checkOutput("--exr", a->exr, ".exr");
+        checkDistinctFiles({{"--gbuffer", a->gbuffer, false},
+                            {"--scene", a->scene, false},
+                            {"--out", a->out, true},
+                            {"--png", a->png, true},
+                            {"--exr", a->exr, true}});
         checkExposure(a->exposure);
         const ShadeOptions shadeOptions = a->ibl.check(cmd, "brdfcl shade");
         const EvalOptions model = a->profile.options();
@@ -403,6 +416,12 @@ void addRenderCommands(CLI::App& app) {
         checkOutput("--out", a->out, png.empty() ? ".exr" : ".png");
         checkOutput("--exr", a->exr, ".exr");
         checkOutput("--gbuffer", a->gbuffer, ".exr");
+        checkDistinctFiles({{"--gltf", a->gltf.path, false},
+                            {"--environment", a->lighting.environmentFile(), false},
+                            {"--lights", a->lighting.lightsFile(), false},
+                            {"--out", a->out, true},
+                            {"--exr", a->exr, true},
+                            {"--gbuffer", a->gbuffer, true}});
         checkExposure(a->exposure);
         checkSpp(a->spp);
         const ShadeOptions shadeOptions = a->ibl.check(cmd, "brdfcl render");

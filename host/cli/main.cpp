@@ -1,5 +1,6 @@
 // brdfcl command-line entry point: subcommand dispatch and the one-line error contract
 // (message on stderr; exit status 2 for bad input or environment, 3 for internal faults).
+#include <csignal>
 #include <cstdio>
 #include <exception>
 #include <memory>
@@ -76,6 +77,9 @@ bool splitsAcrossRanks(const char* subcommand) {
 int main(int argc, char** argv) {
   brdfcl::installSignalCleanup();
   brdfcl::setCacheWarningHandler(brdfcl::cli::printWarning);
+  // A file size limit (ulimit -f) then fails the write with EFBIG, which every writer reports
+  // and cleans up after, instead of killing the process with its temporary left behind.
+  std::signal(SIGXFSZ, SIG_IGN);
   std::unique_ptr<brdfcl::mpi::Scope> mpiScope;
   try {
     mpiScope = std::make_unique<brdfcl::mpi::Scope>(&argc, &argv);

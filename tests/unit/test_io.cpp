@@ -890,7 +890,7 @@ TEST_F(Io, WriteAtomicallyUsesHiddenTemporaryBeside) {
     std::ofstream(tmp, std::ios::binary) << "payload";
   });
   EXPECT_EQ(fs::path(seen).parent_path(), dir_);
-  EXPECT_EQ(fs::path(seen).filename().string().rfind(".result.bin.tmp.", 0), 0u) << seen;
+  EXPECT_EQ(fs::path(seen).filename().string().rfind(".brdfcl.tmp.", 0), 0u) << seen;
   EXPECT_EQ(readFile(p), "payload");
   EXPECT_EQ(listDir(), (std::vector<std::string>{"result.bin"}));
 }

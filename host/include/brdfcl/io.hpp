@@ -125,10 +125,13 @@ class SampleStream {
 //  - An existing symlink is followed (chains and relative targets included) and the target is
 //    written; the link stays a link. /dev/stdout and other /proc links are written in place.
 //  - A FIFO, character device or other non-regular file is written in place, without temporary.
-//  - A regular file (or a new one) is written to a temporary beside it (".<name>.tmp.<pid>.<n>")
-//    that is renamed into place on success and removed on failure: no half-written outputs.
-//    Temporaries are removed on SIGINT/SIGTERM/SIGHUP (installSignalCleanup, cleanup.hpp), and
-//    those of dead processes by the next write to their directory.
+//  - A regular file (or a new one) is written to a temporary beside it
+//    (".brdfcl.tmp.<host>.<pid namespace>.<pid>.<random>") that is renamed into place on success
+//    and removed on failure: no half-written outputs. A replaced file's permission bits and owner
+//    (where the process may set it) carry over to the new one; a new file gets 0666 less the
+//    umask, as open() gives. Temporaries are removed on SIGINT/SIGTERM/SIGHUP/SIGPIPE
+//    (installSignalCleanup, cleanup.hpp), and those of dead processes of this host, an hour old,
+//    by the next write to their directory.
 //  - A directory is refused: "cannot write 'out': it is a directory; name a file inside it".
 // A missing or unwritable directory fails before any data is written:
 // "cannot write 'out/x.csv': No such file or directory".
@@ -190,5 +193,22 @@ void checkOutputPath(const std::string& option, const std::string& path, const s
 // checkOutputPath plus the results writers' extension rule (.csv, .npy, "-"):
 // "--out 'o.exr': cannot write: unknown extension; use .csv or .npy (- writes CSV to stdout)".
 void checkResultsPath(const std::string& option, const std::string& path);
+
+// A file a command line names: the option ("--out", or "A" for an operand), its path, and
+// whether the command writes it.
+struct FileArgument {
+  std::string option, path;
+  bool output = false;
+};
+
+// Refuses, before any work, an output that is the same file as an input or as another output,
+// which the run would destroy or overwrite with half of itself. Existing files are the same when
+// device and inode agree (after symlinks: a link or a hard link to an input is that input); an
+// output that does not exist yet is compared by where it would be written (the end of its links,
+// in the real path of its directory). Empty paths, "-", and FIFOs and devices (/dev/null twice)
+// are not compared. Throws Error naming both options:
+// "--out 's.csv' is the same file as --samples 's.csv'; write the output elsewhere",
+// "--gbuffer 'g.exr' is the same file as --out 'g.exr'; give each output its own file".
+void checkDistinctFiles(const std::vector<FileArgument>& files);
 
 }  // namespace brdfcl

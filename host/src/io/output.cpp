@@ -8,10 +8,10 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <atomic>
 #include <cctype>
 #include <cerrno>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <vector>
@@ -26,8 +26,6 @@ namespace brdfcl::detail {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::atomic<unsigned> tmpCounter{0};
 
 std::string defaultHead(const std::string& userPath) { return "cannot write '" + printable(userPath, 300) + "': "; }
 
@@ -95,18 +93,26 @@ std::string outputExtension(const std::string& userPath, const OutputTarget& tar
   return ext;
 }
 
-std::string createTemporary(const std::string& finalPath, const std::string& userPath) {
-  const fs::path target(finalPath);
-  const std::string fileName = target.filename().string();
-  removeStaleTemporaries(target.parent_path().string());
-  const std::string stem = "." + fileName.substr(0, 200) + ".tmp." + std::to_string(::getpid()) + ".";
+namespace {
+// A new registered file named like a temporary in `dir`, created with `mode` (before the umask).
+// With `like`, the file it will replace: the new one gets its owner (where this process may give
+// it) and its permission bits, set before any byte is written, so that a private file never
+// passes through a wider mode and a replaced output keeps who may read it.
+std::string makeTemporary(const fs::path& dir, const struct stat* like, mode_t mode, const std::string& userPath) {
+  const TemporaryOwner me = thisProcess();
   for (int attempt = 0;; ++attempt) {
-    const std::string tmp = (target.parent_path() / (stem + std::to_string(tmpCounter.fetch_add(1)))).string();
+    const std::string tmp = (dir / temporaryName(me)).string();
     // Registered before it exists, so that no signal can come between creation and registration.
     const bool registered = registerTemporary(tmp);
-    // O_EXCL: a stale temporary of a crashed run with the same pid must not be reused.
-    const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+    // O_EXCL: never a file that is already there, whoever made it.
+    const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, mode);
     if (fd >= 0) {
+      if (like) {
+        // The owner first: chown clears the set-user-ID and set-group-ID bits that fchmod sets.
+        if ((like->st_uid != ::geteuid() || like->st_gid != ::getegid()) && ::fchown(fd, like->st_uid, like->st_gid) != 0)
+          (void)::fchown(fd, static_cast<uid_t>(-1), like->st_gid);  // a group of ours, at least
+        (void)::fchmod(fd, like->st_mode & 07777);  // on failure it stays 0600: narrower, never wider
+      }
       ::close(fd);
       return tmp;
     }
@@ -115,12 +121,23 @@ std::string createTemporary(const std::string& finalPath, const std::string& use
     if (err != EEXIST || attempt > 100) failErrno(userPath, err);
   }
 }
+}  // namespace
+
+std::string createTemporary(const std::string& finalPath, const std::string& userPath) {
+  const fs::path target(finalPath);
+  removeStaleTemporaries(target.parent_path().string());
+  struct stat old {};
+  const bool replaces = ::stat(finalPath.c_str(), &old) == 0 && S_ISREG(old.st_mode);
+  return makeTemporary(target.parent_path(), replaces ? &old : nullptr, replaces ? 0600 : 0666, userPath);
+}
 
 std::string createSpool(const std::string& userPath) {
   std::error_code ec;
   fs::path dir = fs::temp_directory_path(ec);
   if (ec) dir = "/tmp";
-  return createTemporary((dir / "brdfcl-spool").string(), userPath);
+  removeStaleTemporaries(dir.string());
+  // Only this process reads it back.
+  return makeTemporary(dir, nullptr, 0600, userPath);
 }
 
 void commitTemporary(const std::string& tmp, const std::string& finalPath, const std::string& userPath) {
@@ -198,6 +215,7 @@ std::string npyHeader(const std::string& shape) {
 
 namespace brdfcl {
 
+namespace fs = std::filesystem;
 using detail::OutputKind;
 
 void writeAtomically(const std::string& path, const std::function<void(const std::string& tmpPath)>& write) {
@@ -285,6 +303,64 @@ void checkOutputPath(const std::string& option, const std::string& path, const s
   for (std::size_t i = 0; i < extensions.size(); ++i) list += (i ? ", " : "") + extensions[i];
   throw Error(option + " '" + detail::printable(path, 300) + "': cannot write: unknown extension; use " + list +
               " or -");
+}
+
+namespace {
+// What makes two command-line files one: device and inode of an existing regular file, else
+// where a new output would be written. `known` is false for what is not compared.
+struct FileIdentity {
+  bool known = false, exists = false;
+  dev_t device = 0;
+  ino_t inode = 0;
+  std::string path;
+};
+
+FileIdentity identify(const FileArgument& f) {
+  FileIdentity id;
+  if (f.path.empty() || f.path == "-" || f.path == "/dev/stdout") return id;
+  struct stat st {};
+  if (::stat(f.path.c_str(), &st) == 0) {
+    if (!S_ISREG(st.st_mode)) return id;  // FIFOs and devices are streams, directories refused elsewhere
+    id.known = id.exists = true;
+    id.device = st.st_dev;
+    id.inode = st.st_ino;
+    return id;
+  }
+  if (!f.output) return id;  // a missing input fails when it is read
+  detail::OutputTarget t;
+  try {
+    t = detail::resolveOutput(f.path);
+  } catch (const Error&) {
+    return id;  // checkOutputPath says what is wrong with it
+  }
+  if (t.kind != OutputKind::File) return id;
+  const fs::path p(t.path);
+  const std::string dir = p.parent_path().empty() ? "." : p.parent_path().string();
+  char* real = ::realpath(dir.c_str(), nullptr);
+  if (!real) return id;
+  id.known = true;
+  id.path = std::string(real) + "/" + p.filename().string();
+  std::free(real);
+  return id;
+}
+}  // namespace
+
+void checkDistinctFiles(const std::vector<FileArgument>& files) {
+  std::vector<FileIdentity> ids;
+  for (const FileArgument& f : files) ids.push_back(identify(f));
+  for (std::size_t j = 0; j < files.size(); ++j) {
+    for (std::size_t i = 0; i < j; ++i) {
+      const FileIdentity &a = ids[i], &b = ids[j];
+      if (!a.known || !b.known || a.exists != b.exists || (!files[i].output && !files[j].output)) continue;
+      if (a.exists ? a.device != b.device || a.inode != b.inode : a.path != b.path) continue;
+      // The output first: it is what would destroy the other.
+      const FileArgument& out = files[j].output ? files[j] : files[i];
+      const FileArgument& other = files[j].output ? files[i] : files[j];
+      throw Error(out.option + " '" + detail::printable(out.path, 300) + "' is the same file as " + other.option + " '" +
+                  detail::printable(other.path, 300) + "'; " +
+                  (other.output ? "give each output its own file" : "write the output elsewhere"));
+    }
+  }
 }
 
 void checkResultsPath(const std::string& option, const std::string& path) {

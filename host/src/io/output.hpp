@@ -38,10 +38,12 @@ inline constexpr const char* kResultsExtensionHint = "unknown extension; use .cs
 // (/dev/stdout, a FIFO named "results"): those get the writer's text format.
 std::string outputExtension(const std::string& userPath, const OutputTarget& target);
 
-// An empty, registered temporary beside `finalPath` (".<name>.tmp.<pid>.<n>"), after removing
-// the directory's stale temporaries. Errors name `userPath`.
+// An empty, registered temporary beside `finalPath` (named as temporaries.hpp says), after
+// removing the directory's stale temporaries; when it replaces a regular file, with that file's
+// permission bits and owner (where allowed). Errors name `userPath`.
 std::string createTemporary(const std::string& finalPath, const std::string& userPath);
-// A registered temporary in the system temp directory, for output spooled before it is streamed.
+// A registered temporary (mode 0600) in the system temp directory, for output spooled before it
+// is streamed.
 std::string createSpool(const std::string& userPath);
 // rename() into place, then forget the temporary; throws Error naming `userPath`.
 void commitTemporary(const std::string& tmp, const std::string& finalPath, const std::string& userPath);

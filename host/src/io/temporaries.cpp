@@ -1,18 +1,22 @@
-// The temporaries registry and the SIGINT/SIGTERM/SIGHUP handler that empties it, and the sweep
-// that removes temporaries of dead processes. The handler only reads fixed arrays and atomics and
+// The temporaries registry and the SIGINT/SIGTERM/SIGHUP/SIGPIPE handler that empties it, the
+// temporaries' names, and the sweep that removes old temporaries of dead processes of this host. The handler only reads fixed arrays and atomics and
 // calls unlink and _exit, so it is async-signal-safe whichever thread it interrupts.
 #include "io/temporaries.hpp"
 
 #include <dirent.h>
 #include <fcntl.h>
 #include <signal.h>
+#include <sys/random.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
 #include <atomic>
 #include <cerrno>
+#include <chrono>
 #include <cstring>
+#include <ctime>
 #include <filesystem>
+#include <vector>
 
 #include "brdfcl/cleanup.hpp"
 
@@ -42,11 +46,81 @@ void removeTemporariesAndExit(int signo) {
   ::_exit(128 + signo);
 }
 
-bool allDigits(const std::string& s) {
-  if (s.empty() || s.size() > 18) return false;
-  for (char c : s)
-    if (c < '0' || c > '9') return false;
+constexpr char kPrefix[] = ".brdfcl.tmp.";
+constexpr std::size_t kHostMax = 160;  // keeps the whole name within NAME_MAX
+constexpr char kHex[] = "0123456789abcdef";
+
+bool isHostByte(unsigned char c) {
+  return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '-';
+}
+
+}  // namespace
+
+std::string encodeHostName(const std::string& host) {
+  std::string out;
+  for (const unsigned char c : host) {
+    if (isHostByte(c)) {
+      out += char(c);
+    } else {
+      out += '_';
+      out += kHex[c >> 4];
+      out += kHex[c & 15];
+    }
+  }
+  if (out.size() <= kHostMax) return out;
+  std::uint64_t h = 1469598103934665603ull;  // FNV-1a
+  for (const unsigned char c : out) h = (h ^ c) * 1099511628211ull;
+  std::string tail = "~";
+  for (int i = 15; i >= 0; --i) tail += kHex[(h >> (4 * i)) & 15];
+  // Cut between escapes, never inside one.
+  std::size_t cut = 0;
+  for (std::size_t i = 0; i < out.size();) {
+    const std::size_t step = out[i] == '_' ? 3 : 1;
+    if (i + step > kHostMax - tail.size()) break;
+    i += step;
+    cut = i;
+  }
+  return out.substr(0, cut) + tail;
+}
+
+namespace {
+
+bool isLowerHex(char c) { return (c >= '0' && c <= '9') || (c >= 'a' && c <= 'f'); }
+
+bool isEncodedHost(const std::string& s) {
+  if (s.empty() || s.size() > kHostMax) return false;
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    const unsigned char c = static_cast<unsigned char>(s[i]);
+    if (isHostByte(c) || c == '~') continue;
+    if (c != '_' || i + 2 >= s.size() || !isLowerHex(s[i + 1]) || !isLowerHex(s[i + 2])) return false;
+    i += 2;
+  }
   return true;
+}
+
+// Decimal without sign or leading zeros ("0" itself only where `zero` allows it).
+bool parseNumber(const std::string& s, std::size_t maxDigits, bool zero, std::uint64_t& value) {
+  if (s.empty() || s.size() > maxDigits || (s[0] == '0' && (s.size() > 1 || !zero))) return false;
+  value = 0;
+  for (const char c : s) {
+    if (c < '0' || c > '9') return false;
+    const std::uint64_t next = value * 10 + std::uint64_t(c - '0');
+    if (next / 10 != value) return false;
+    value = next;
+  }
+  return true;
+}
+
+std::uint64_t randomBits() {
+  std::uint64_t r = 0;
+  if (::getrandom(&r, sizeof r, GRND_NONBLOCK) == static_cast<ssize_t>(sizeof r)) return r;
+  // No entropy yet (early boot): the time, the pid and a counter, mixed (splitmix64).
+  static std::atomic<std::uint64_t> counter{0};
+  std::uint64_t z = static_cast<std::uint64_t>(std::chrono::steady_clock::now().time_since_epoch().count()) ^
+                    (static_cast<std::uint64_t>(::getpid()) << 32) ^ (counter.fetch_add(1) * 0x9e3779b97f4a7c15ull);
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+  return z ^ (z >> 31);
 }
 
 }  // namespace
@@ -77,30 +151,72 @@ void deregisterTemporary(const std::string& path) {
   }
 }
 
-bool parseTemporaryName(const std::string& name, long& pid) {
-  // ".<name>.tmp.<pid>.<n>": read from the end, since <name> may itself contain ".tmp.".
-  const auto lastDot = name.rfind('.');
-  if (lastDot == std::string::npos || lastDot == 0 || !allDigits(name.substr(lastDot + 1))) return false;
-  const auto pidDot = name.rfind('.', lastDot - 1);
-  if (pidDot == std::string::npos || !allDigits(name.substr(pidDot + 1, lastDot - pidDot - 1))) return false;
-  const std::string head = name.substr(0, pidDot);
-  if (name[0] != '.' || head.size() < 6 || head.compare(head.size() - 4, 4, ".tmp") != 0) return false;
-  pid = std::stol(name.substr(pidDot + 1, lastDot - pidDot - 1));
-  return pid > 0;
+TemporaryOwner thisProcess() {
+  TemporaryOwner me;
+  char host[256] = {};
+  me.host = encodeHostName(::gethostname(host, sizeof host - 1) == 0 && host[0] != '\0' ? host : "unknown-host");
+  // "pid:[4026531836]": the namespace's inode tells containers that share a host name apart.
+  char link[64] = {};
+  const ssize_t n = ::readlink("/proc/self/ns/pid", link, sizeof link - 1);
+  if (n > 0) {
+    const std::string s(link, static_cast<std::size_t>(n));
+    const auto open = s.find('['), close = s.find(']');
+    std::uint64_t inode = 0;
+    if (open != std::string::npos && close != std::string::npos && close > open &&
+        parseNumber(s.substr(open + 1, close - open - 1), 20, true, inode))
+      me.pidNamespace = inode;
+  }
+  me.pid = static_cast<long>(::getpid());
+  return me;
+}
+
+std::string temporaryName(const TemporaryOwner& owner) {
+  const std::uint64_t r = randomBits();
+  std::string random;
+  for (int i = 15; i >= 0; --i) random += kHex[(r >> (4 * i)) & 15];
+  return kPrefix + owner.host + "." + std::to_string(owner.pidNamespace) + "." + std::to_string(owner.pid) + "." +
+         random;
+}
+
+bool parseTemporaryName(const std::string& name, TemporaryOwner& owner) {
+  const std::size_t prefix = sizeof kPrefix - 1;
+  if (name.size() > 255 || name.compare(0, prefix, kPrefix) != 0) return false;
+  std::vector<std::string> fields;
+  std::size_t at = prefix;
+  for (;;) {
+    const auto dot = name.find('.', at);
+    fields.push_back(name.substr(at, dot == std::string::npos ? std::string::npos : dot - at));
+    if (dot == std::string::npos) break;
+    at = dot + 1;
+  }
+  if (fields.size() != 4 || !isEncodedHost(fields[0]) || fields[3].size() != 16) return false;
+  for (const char c : fields[3])
+    if (!isLowerHex(c)) return false;
+  std::uint64_t ns = 0, pid = 0;
+  if (!parseNumber(fields[1], 20, true, ns) || !parseNumber(fields[2], 10, false, pid) || pid > 0x7fffffffu)
+    return false;
+  owner.host = fields[0];
+  owner.pidNamespace = ns;
+  owner.pid = static_cast<long>(pid);
+  return true;
 }
 
 void removeStaleTemporaries(const std::string& dir) {
   DIR* d = ::opendir(dir.empty() ? "." : dir.c_str());
   if (!d) return;
-  const long self = static_cast<long>(::getpid());
+  const TemporaryOwner me = thisProcess();
+  const std::time_t now = std::time(nullptr);
   while (const dirent* e = ::readdir(d)) {
-    long pid = 0;
-    if (!parseTemporaryName(e->d_name, pid) || pid == self) continue;
+    TemporaryOwner owner;
+    if (!parseTemporaryName(e->d_name, owner) || owner.host != me.host || owner.pidNamespace != me.pidNamespace ||
+        owner.pid == me.pid)
+      continue;
     // EPERM means the process exists under another user: only ESRCH proves it is gone.
-    if (::kill(static_cast<pid_t>(pid), 0) == 0 || errno != ESRCH) continue;
+    if (::kill(static_cast<pid_t>(owner.pid), 0) == 0 || errno != ESRCH) continue;
     struct stat st {};
-    if (::fstatat(::dirfd(d), e->d_name, &st, AT_SYMLINK_NOFOLLOW) == 0 && S_ISREG(st.st_mode))
-      ::unlinkat(::dirfd(d), e->d_name, 0);
+    if (::fstatat(::dirfd(d), e->d_name, &st, AT_SYMLINK_NOFOLLOW) != 0 || !S_ISREG(st.st_mode)) continue;
+    if (now - st.st_mtime < kStaleTemporarySeconds) continue;
+    ::unlinkat(::dirfd(d), e->d_name, 0);
   }
   ::closedir(d);
 }
@@ -110,7 +226,9 @@ void removeStaleTemporaries(const std::string& dir) {
 namespace brdfcl {
 
 void installSignalCleanup() {
-  for (const int signo : {SIGINT, SIGTERM, SIGHUP}) {
+  // SIGPIPE: a reader that goes away (`brdfcl ... --out - | head`) ends the run as it ends any
+  // program, but not before the spool of the output is removed.
+  for (const int signo : {SIGINT, SIGTERM, SIGHUP, SIGPIPE}) {
     struct sigaction old {};
     if (::sigaction(signo, nullptr, &old) == 0 && old.sa_handler == SIG_IGN) continue;
     struct sigaction sa {};
@@ -119,6 +237,7 @@ void installSignalCleanup() {
     sigaddset(&sa.sa_mask, SIGINT);
     sigaddset(&sa.sa_mask, SIGTERM);
     sigaddset(&sa.sa_mask, SIGHUP);
+    sigaddset(&sa.sa_mask, SIGPIPE);
     ::sigaction(signo, &sa, nullptr);
   }
 }

@@ -1,9 +1,12 @@
 // Collective output through MPI-IO (see shared_output.hpp). Each rank copies its part from its
 // local file in blocks with MPI_File_write_at_all; ranks with fewer blocks join with empty writes,
-// and a rank that fails to read keeps joining, so no rank waits forever on another.
+// and a rank that fails to read or write keeps joining, so no rank waits forever on another.
+// Every write's count, the sync and the close are checked on every rank, and agreed on, before
+// rank 0 renames the temporary into place.
 #include "mpi/shared_output.hpp"
 
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -33,6 +36,14 @@ void checkSharedOutput(const std::string& option, const std::string& userPath) {
 #ifdef BRDFCL_HAVE_MPI
 
 namespace {
+// The bytes a completed MPI-IO write of MPI_BYTEs reports in its status.
+std::size_t bytesWritten(const MPI_Status& st) {
+  int count = 0;
+  MPI_Status copy = st;
+  if (MPI_Get_count(&copy, MPI_BYTE, &count) != MPI_SUCCESS || count == MPI_UNDEFINED || count < 0) return 0;
+  return static_cast<std::size_t>(count);
+}
+
 std::string mpiMessage(int code) {
   char text[MPI_MAX_ERROR_STRING] = {};
   int length = 0;
@@ -46,7 +57,12 @@ void writeShared(const std::string& userPath, const std::string& header, const s
   Session& s = Session::get();
   const std::string shown = detail::printable(userPath, 300);
   const std::uint64_t headerBytes = std::stoull(s.broadcast(std::to_string(header.size())));
-  const std::uint64_t offset = headerBytes + s.exclusivePrefixSum(partBytes);
+  std::uint64_t partsBytes = 0;
+  const std::uint64_t offset = headerBytes + s.exclusivePrefixSum(partBytes, &partsBytes);
+  // MPI-IO may report success for a write the file system took only part of (a full disk, a
+  // file size limit): every count is checked, and the file's size once it is closed.
+  const std::string shortWrite =
+      "cannot write '" + shown + "': the file system took only part of the data (a full disk or a file size limit)";
 
   // Rank 0 makes the temporary in the output's directory, which every rank must see.
   std::string tmp, finalPath;
@@ -76,6 +92,7 @@ void writeShared(const std::string& userPath, const std::string& header, const s
     MPI_Status st;
     const int rc = MPI_File_write_at(file, 0, header.data(), static_cast<int>(header.size()), MPI_BYTE, &st);
     if (rc != MPI_SUCCESS) failure = "cannot write '" + shown + "': MPI-IO: " + mpiMessage(rc);
+    else if (bytesWritten(st) != header.size()) failure = shortWrite;
   }
   constexpr std::uint64_t kBlock = std::uint64_t(4) << 20;
   unsigned long long rounds = (partBytes + kBlock - 1) / kBlock, maxRounds = 0;
@@ -103,8 +120,12 @@ void writeShared(const std::string& userPath, const std::string& header, const s
     const int rc = MPI_File_write_at_all(file, static_cast<MPI_Offset>(offset + at), block.data(), static_cast<int>(n),
                                          MPI_BYTE, &st);
     if (rc != MPI_SUCCESS && failure.empty()) failure = "cannot write '" + shown + "': MPI-IO: " + mpiMessage(rc);
+    if (rc == MPI_SUCCESS && failure.empty() && bytesWritten(st) != n) failure = shortWrite;
   }
   if (fd >= 0) ::close(fd);
+  // Collective, like the close: the data on the disk (or its error, on NFS) before the rename.
+  const int synced = MPI_File_sync(file);
+  if (synced != MPI_SUCCESS && failure.empty()) failure = "cannot write '" + shown + "': MPI-IO: " + mpiMessage(synced);
   const int closed = MPI_File_close(&file);
   if (closed != MPI_SUCCESS && failure.empty()) failure = "cannot write '" + shown + "': MPI-IO: " + mpiMessage(closed);
   s.together([&] {
@@ -112,6 +133,9 @@ void writeShared(const std::string& userPath, const std::string& header, const s
   });
   s.together([&] {
     if (s.rank() != 0) return;
+    struct stat st {};
+    if (::stat(tmp.c_str(), &st) != 0) throw Error("cannot write '" + shown + "': " + std::strerror(errno));
+    if (static_cast<std::uint64_t>(st.st_size) != headerBytes + partsBytes) throw Error(shortWrite);
     detail::commitTemporary(tmp, finalPath, userPath);
     cleanup.path.clear();
   });
