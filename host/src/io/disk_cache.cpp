@@ -295,8 +295,8 @@ struct Listed {
   bool directory = false;
 };
 
-// The folder's own entries (regular files or not; links are not followed). Temporaries of our
-// entries that dead processes left are removed on the way when `sweep` is set.
+// The folder's own entries (regular files or not; links are not followed). Temporaries that dead
+// processes of this host left are removed on the way when `sweep` is set.
 std::vector<Listed> listEntries(const Folder& f, bool sweep) {
   std::vector<Listed> out;
   const int dfd = ::openat(f.fd(), ".", O_RDONLY | O_DIRECTORY | O_CLOEXEC);
@@ -306,17 +306,12 @@ std::vector<Listed> listEntries(const Folder& f, bool sweep) {
     ::close(dfd);
     return out;
   }
+  const TemporaryOwner self = thisProcess();
   while (const dirent* e = ::readdir(d)) {
     const std::string name = e->d_name;
     Listed l;
     if (!isCacheEntryName(name, &l.kind)) {
-      long pid = 0;
-      if (!sweep || !parseTemporaryName(name, pid) || pid == long(::getpid())) continue;
-      if (!isCacheEntryName(name.substr(1, name.rfind(".tmp.") - 1))) continue;
-      if (::kill(pid_t(pid), 0) == 0 || errno != ESRCH) continue;
-      struct stat st {};
-      if (::fstatat(f.fd(), name.c_str(), &st, AT_SYMLINK_NOFOLLOW) == 0 && S_ISREG(st.st_mode))
-        ::unlinkat(f.fd(), name.c_str(), 0);
+      if (sweep && isStaleTemporary(f.fd(), name.c_str(), self)) ::unlinkat(f.fd(), name.c_str(), 0);
       continue;
     }
     struct stat st {};
@@ -361,12 +356,10 @@ void writeFailed(const Folder& f, int err) {
                                        quoted(f.path()), std::strerror(err)));
 }
 
-std::atomic<unsigned> tmpCounter{0};
-
 // Writes header, key and payload to a new private temporary and renames it to `name`.
 int writeEntry(const Folder& f, const std::string& name, std::string_view payload) {
   const std::string header = entryHeader(name, payload);
-  const std::string tmp = "." + name + ".tmp." + std::to_string(::getpid()) + "." + std::to_string(tmpCounter++);
+  const std::string tmp = temporaryName(thisProcess());
   const std::string tmpPath = f.entry(tmp);
   const bool registered = registerTemporary(tmpPath);
   const int fd = ::openat(f.fd(), tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0600);

@@ -201,23 +201,24 @@ bool parseTemporaryName(const std::string& name, TemporaryOwner& owner) {
   return true;
 }
 
+bool isStaleTemporary(int dirFd, const char* name, const TemporaryOwner& self) {
+  TemporaryOwner owner;
+  if (!parseTemporaryName(name, owner) || owner.host != self.host || owner.pidNamespace != self.pidNamespace ||
+      owner.pid == self.pid)
+    return false;
+  // EPERM means the process exists under another user: only ESRCH proves it is gone.
+  if (::kill(static_cast<pid_t>(owner.pid), 0) == 0 || errno != ESRCH) return false;
+  struct stat st {};
+  if (::fstatat(dirFd, name, &st, AT_SYMLINK_NOFOLLOW) != 0 || !S_ISREG(st.st_mode)) return false;
+  return std::time(nullptr) - st.st_mtime >= kStaleTemporarySeconds;
+}
+
 void removeStaleTemporaries(const std::string& dir) {
   DIR* d = ::opendir(dir.empty() ? "." : dir.c_str());
   if (!d) return;
   const TemporaryOwner me = thisProcess();
-  const std::time_t now = std::time(nullptr);
-  while (const dirent* e = ::readdir(d)) {
-    TemporaryOwner owner;
-    if (!parseTemporaryName(e->d_name, owner) || owner.host != me.host || owner.pidNamespace != me.pidNamespace ||
-        owner.pid == me.pid)
-      continue;
-    // EPERM means the process exists under another user: only ESRCH proves it is gone.
-    if (::kill(static_cast<pid_t>(owner.pid), 0) == 0 || errno != ESRCH) continue;
-    struct stat st {};
-    if (::fstatat(::dirfd(d), e->d_name, &st, AT_SYMLINK_NOFOLLOW) != 0 || !S_ISREG(st.st_mode)) continue;
-    if (now - st.st_mtime < kStaleTemporarySeconds) continue;
-    ::unlinkat(::dirfd(d), e->d_name, 0);
-  }
+  while (const dirent* e = ::readdir(d))
+    if (isStaleTemporary(::dirfd(d), e->d_name, me)) ::unlinkat(::dirfd(d), e->d_name, 0);
   ::closedir(d);
 }
 

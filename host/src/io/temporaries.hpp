@@ -39,6 +39,11 @@ bool parseTemporaryName(const std::string& name, TemporaryOwner& owner);
 // namespace with the same host name, or a clock that disagrees, gets this much grace.
 inline constexpr long kStaleTemporarySeconds = 3600;
 
+// Whether the entry `name` of the directory `dirFd` is a temporary that may be swept: exactly a
+// temporary's name, of `self`'s host and PID namespace, of a process that no longer exists, a
+// regular file last modified more than kStaleTemporarySeconds ago.
+bool isStaleTemporary(int dirFd, const char* name, const TemporaryOwner& self);
+
 // Unlinks the entries of `dir` that are exactly temporaries' names, of this host and PID
 // namespace, of a process that no longer exists, regular files last modified more than
 // kStaleTemporarySeconds ago. Anything else is kept; failures are ignored (a stale file costs
