@@ -23,17 +23,17 @@ inline const Pair* g_pair = nullptr;
 inline const Material* g_material = nullptr;
 using RunFn = vec3 (*)(const Material&, const Pair&);
 
-inline vec3 unit(float x, float y, float z) {
-  float n = std::sqrt((x * x + y * y) + z * z);
+inline vec3 unit(real x, real y, real z) {
+  real n = std::sqrt((x * x + y * y) + z * z);
   return vec3(x / n, y / n, z / n);
 }
 
 // Table look-up served from the harness's values for the current pair: u is N.V or N.L
 // (whichever is nearer), v must be the sheen roughness.
-inline float pair_lookup(float u, float v, bool neubelt) {
+inline real pair_lookup(real u, real v, bool neubelt) {
   const Pair& p = *g_pair;
   if (v != g_material->sheen_roughness) return NAN;
-  float nv = glm::clamp(p.V.z, 0.0f, 1.0f), nl = glm::clamp(p.L.z, 0.0f, 1.0f);
+  real nv = glm::clamp(p.V.z, real(0), real(1)), nl = glm::clamp(p.L.z, real(0), real(1));
   bool view = std::fabs(u - nv) <= std::fabs(u - nl);
   if (neubelt) return view ? p.e_cn_v : p.e_cn_l;
   return view ? p.e_cc_v : p.e_cc_l;

@@ -1,6 +1,7 @@
 // GLSL on GLM: the types, built-ins and qualifiers an engine's shader functions need so that
 // scripts/engine-check can compile them as C++ (literals already carry an `f`, swizzles are calls).
-// Everything stays in float, as on a GPU; nothing here is engine code.
+// Everything stays in float, as on a GPU (EC_FLOAT64: in double, to tell an engine's own float
+// rounding from a real difference); nothing here is engine code.
 #pragma once
 #define GLM_FORCE_SWIZZLE
 #include <glm/glm.hpp>
@@ -10,9 +11,18 @@
 #include <string>
 #include <vector>
 
-using glm::vec2; using glm::vec3; using glm::vec4;
+#ifdef EC_FLOAT64
+using real = double;
+#else
+using real = float;
+#endif
+using vec2 = glm::vec<2, real, glm::defaultp>;
+using vec3 = glm::vec<3, real, glm::defaultp>;
+using vec4 = glm::vec<4, real, glm::defaultp>;
+using mat2 = glm::mat<2, 2, real, glm::defaultp>;
+using mat3 = glm::mat<3, 3, real, glm::defaultp>;
+using mat4 = glm::mat<4, 4, real, glm::defaultp>;
 using glm::ivec2; using glm::ivec3; using glm::ivec4;
-using glm::mat2; using glm::mat3; using glm::mat4;
 using glm::dot; using glm::cross; using glm::normalize; using glm::length; using glm::distance;
 using glm::reflect; using glm::refract;
 using glm::clamp; using glm::mix; using glm::min; using glm::max; using glm::abs; using glm::sign;
@@ -20,20 +30,20 @@ using glm::floor; using glm::ceil; using glm::fract; using glm::mod; using glm::
 using glm::pow; using glm::exp; using glm::exp2; using glm::log; using glm::log2; using glm::sqrt;
 using glm::inversesqrt; using glm::sin; using glm::cos; using glm::tan; using glm::asin; using glm::acos; using glm::atan;
 
-// Scalar forms GLM lacks (<cmath> already gives pow, exp, log, sqrt, abs in float).
-inline float inversesqrt(float a) { return 1.0f / std::sqrt(a); }
-inline float sign(float a) { return a > 0.0f ? 1.0f : (a < 0.0f ? -1.0f : 0.0f); }
-inline float fract(float a) { return a - std::floor(a); }
-inline float saturate(float a) { return glm::clamp(a, 0.0f, 1.0f); }
-inline vec2 saturate(vec2 a) { return glm::clamp(a, 0.0f, 1.0f); }
-inline vec3 saturate(vec3 a) { return glm::clamp(a, 0.0f, 1.0f); }
-inline vec4 saturate(vec4 a) { return glm::clamp(a, 0.0f, 1.0f); }
+// Scalar forms GLM lacks (<cmath> already gives pow, exp, log, sqrt, abs).
+inline real inversesqrt(real a) { return real(1) / std::sqrt(a); }
+inline real sign(real a) { return a > real(0) ? real(1) : (a < real(0) ? -real(1) : real(0)); }
+inline real fract(real a) { return a - std::floor(a); }
+inline real saturate(real a) { return glm::clamp(a, real(0), real(1)); }
+inline vec2 saturate(vec2 a) { return glm::clamp(a, real(0), real(1)); }
+inline vec3 saturate(vec3 a) { return glm::clamp(a, real(0), real(1)); }
+inline vec4 saturate(vec4 a) { return glm::clamp(a, real(0), real(1)); }
 // GLSL's mix/clamp/min/max with an int where a float is meant.
-inline float mix(float a, float b, float t) { return a + (b - a) * t; }
-inline float clamp(float x, float lo, float hi) { return std::fmin(std::fmax(x, lo), hi); }
-inline float min(float a, float b) { return b < a ? b : a; }
-inline float max(float a, float b) { return a < b ? b : a; }
-inline float atan(float y, float x) { return std::atan2(y, x); }
+inline real mix(real a, real b, real t) { return a + (b - a) * t; }
+inline real clamp(real x, real lo, real hi) { return std::fmin(std::fmax(x, lo), hi); }
+inline real min(real a, real b) { return b < a ? b : a; }
+inline real max(real a, real b) { return a < b ? b : a; }
+inline real atan(real y, real x) { return std::atan2(y, x); }
 
 // A 2D float texture sampled the way a GPU does (bilinear, clamp to edge), red channel only.
 struct sampler2D {
@@ -46,21 +56,21 @@ struct sampler2D {
   }
 };
 inline vec4 texture(const sampler2D& s, vec2 uv) {
-  if (s.w == 0) return vec4(0.0f);
-  float x = uv.x * float(s.w) - 0.5f, y = uv.y * float(s.h) - 0.5f;
-  float x0 = std::floor(x), y0 = std::floor(y), fx = x - x0, fy = y - y0;
+  if (s.w == 0) return vec4(real(0));
+  real x = uv.x * real(s.w) - real(0.5), y = uv.y * real(s.h) - real(0.5);
+  real x0 = std::floor(x), y0 = std::floor(y), fx = x - x0, fy = y - y0;
   int i = int(x0), j = int(y0);
-  float a = mix(s.at(i, j), s.at(i + 1, j), fx), b = mix(s.at(i, j + 1), s.at(i + 1, j + 1), fx);
-  return vec4(mix(a, b, fy), 0.0f, 0.0f, 1.0f);
+  real a = mix(s.at(i, j), s.at(i + 1, j), fx), b = mix(s.at(i, j + 1), s.at(i + 1, j + 1), fx);
+  return vec4(mix(a, b, fy), real(0), real(0), real(1));
 }
-inline vec4 textureLod(const sampler2D& s, vec2 uv, float) { return texture(s, uv); }
+inline vec4 textureLod(const sampler2D& s, vec2 uv, real) { return texture(s, uv); }
 
 // Screen-space derivatives of a flat, front-facing quad whose UVs follow +X and +Y: the engine's
 // own tangent-frame code then builds N = +Z, T = +X, B = +Y.
-inline vec2 dFdx(vec2) { return vec2(1.0f, 0.0f); }
-inline vec2 dFdy(vec2) { return vec2(0.0f, 1.0f); }
-inline vec3 dFdx(vec3) { return vec3(1.0f, 0.0f, 0.0f); }
-inline vec3 dFdy(vec3) { return vec3(0.0f, 1.0f, 0.0f); }
+inline vec2 dFdx(vec2) { return vec2(1, 0); }
+inline vec2 dFdy(vec2) { return vec2(0, 1); }
+inline vec3 dFdx(vec3) { return vec3(1, 0, 0); }
+inline vec3 dFdy(vec3) { return vec3(0, 1, 0); }
 static bool gl_FrontFacing = true;
 
 // Which lobe the run keeps: lobe hooks wrap the engine functions that start a lobe.
@@ -82,7 +92,7 @@ struct Ctx {
   inline auto NAME(A&&... a) -> decltype(NAME##__engine(a...)) {                       \
     using R = decltype(NAME##__engine(a...));                                          \
     if (ec::g_ctx != 0) return NAME##__engine(a...);                                   \
-    if (ec::g_lobe != ec::ALL && ec::g_lobe != (LOBE)) return R(0.0f);                 \
+    if (ec::g_lobe != ec::ALL && ec::g_lobe != (LOBE)) return R(0);                 \
     ec::Ctx c(LOBE);                                                                   \
     return NAME##__engine(a...);                                                       \
   }

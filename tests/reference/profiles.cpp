@@ -247,6 +247,15 @@ Mat readMaterial(const MaterialParams& p) {
 }
 
 // ---- khronos: glTF Sample Renderer ----
+// D_GGX, infinite where the engine's float denominator NdotH^2 (alpha^2 - 1) + 1 is exactly 0
+// (N.H = 1 and alpha^2 - 1 rounding to -1 in float), NaN there at alpha = 0.
+double khronosD(double alpha, double NdotH) {
+  const float nh = static_cast<float>(NdotH), a2 = static_cast<float>(alpha * alpha);
+  const float f = nh * nh * (a2 - 1.0f) + 1.0f;
+  if (f == 0.0f) return alpha * alpha / 0.0;
+  return D_GGXp(alpha, NdotH);
+}
+
 Lobes khronos(const Mat& q, const Geometry& g) {
   const double alpha = q.r * q.r;
   const double f0d = f0FromIor(q.ior);
@@ -256,13 +265,18 @@ Lobes khronos(const Mat& q, const Geometry& g) {
     const double at = mix(alpha, 1.0, q.s * q.s);  // unfloored, as the engine has it
     const double ab = std::clamp(alpha, 0.001, 1.0);
     const double NdotH = std::clamp(g.NdotH, 0.001, 1.0);
-    const double D = D_Burley(at, ab, dot3(g.H, g.T), dot3(g.H, g.B), NdotH);
+    // The engine's grouping (a = at ab, w2 = a / |(ab H.T, at H.B, a N.H)|^2, D = a w2^2 / pi):
+    // 0 at at = 0 off N.H = 1, where dividing by at first would give NaN.
+    const double a = at * ab;
+    const double fx = ab * dot3(g.H, g.T), fy = at * dot3(g.H, g.B), fz = a * NdotH;
+    const double w2 = a / (fx * fx + fy * fy + fz * fz);
+    const double D = a * w2 * w2 / kPi;
     const double Vis = std::min(0.5 / heitzDenominator(at, ab, g.NdotL, g.NdotV, dot3(g.T, g.V),
                                                        dot3(g.B, g.V), dot3(g.T, g.L), dot3(g.B, g.L)),
                                 1.0);
     S = D * Vis;
   } else {
-    S = D_GGXp(alpha, g.NdotH) * V_GGXp(alpha, g.NdotL, g.NdotV);  // NaN at alpha = 0, N.H = 1
+    S = khronosD(alpha, g.NdotH) * V_GGXp(alpha, g.NdotL, g.NdotV);  // NaN at alpha = 0, N.H = 1
   }
 
   const double Fd = F_SchlickP(f0d, 1.0, g.VdotH);
@@ -272,7 +286,10 @@ Lobes khronos(const Mat& q, const Geometry& g) {
   if (q.sheen) {
     const double rsF = std::max(q.rs, 1e-6);
     const double alphaS = rsF * rsF;
-    sheenDV = D_CharlieS(alphaS, 1.0 - g.NdotH * g.NdotH) *
+    // sin^2 = 1 - N.H^2 as the engine computes it, in float: 1 below N.H ~ 1.7e-4.
+    const float nhF = static_cast<float>(g.NdotH);
+    const float sin2F = 1.0f - nhF * nhF;
+    sheenDV = D_CharlieS(alphaS, sin2F) *
               std::min(V_Charlie(g.NdotL, g.NdotV, alphaS), 1.0);
     // E takes the raw sheen roughness (the D's floor does not reach the table).
     sh = std::min(1.0 - q.maxC * E_CC(g.NdotV, q.rs), 1.0 - q.maxC * E_CC(g.NdotL, q.rs));
@@ -283,7 +300,7 @@ Lobes khronos(const Mat& q, const Geometry& g) {
     // The engine takes the coat's F0 from the material IOR, not 1.5.
     const double Fc = F_SchlickP(f0FromIor(q.ior), 1.0, g.NdotV);
     const double alphaC = q.rc * q.rc;
-    coat = q.cc * Fc * D_GGXp(alphaC, g.NdotH) * V_GGXp(alphaC, g.NdotL, g.NdotV);
+    coat = q.cc * Fc * khronosD(alphaC, g.NdotH) * V_GGXp(alphaC, g.NdotL, g.NdotV);
     k = 1.0 - q.cc * Fc;
   }
 
@@ -291,7 +308,8 @@ Lobes khronos(const Mat& q, const Geometry& g) {
   for (int i = 0; i < 3; ++i) {
     const double Fm = F_SchlickP(q.b[i], 1.0, g.VdotH);
     out.diffuse[i] = k * sh * (1.0 - q.m) * (1.0 - Fd) * q.b[i] / kPi;
-    out.specular[i] = k * sh * ((1.0 - q.m) * Fd + q.m * Fm) * S;
+    // mix(S Fd, S F_m, m) as the engine mixes them: an infinite S is NaN at any m (0 * inf).
+    out.specular[i] = k * sh * ((1.0 - q.m) * Fd * S + q.m * (Fm * S));
     out.sheen[i] = k * q.c[i] * sheenDV;
     out.clearcoat[i] = coat;
   }

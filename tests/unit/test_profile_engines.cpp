@@ -1,7 +1,7 @@
 // Engine facts the profiles reproduce, each checked on the kernels against a value derived by hand
 // from the engine's formula at one input (docs/profiles.md): MaterialX's average-Fresnel energy
-// compensation, three.js's sheen roughness clamp, Khronos's anisotropy on presence, Filament's caps,
-// and the engines' own cosine clamps.
+// compensation, three.js's sheen roughness clamp, Khronos's anisotropy on presence, its float D
+// and sheen sin^2, Filament's caps, and the engines' own cosine clamps.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -92,9 +92,10 @@ TEST(ProfileEngineFacts, ThreejsClampsSheenRoughnessAt007) {
 
 // The Sample Renderer defines MATERIAL_ANISOTROPY when KHR_materials_anisotropy is present, even
 // at strength 0, and takes BRDF_specularGGXAnisotropy: alpha_b = clamp(alpha, 0.001, 1). A white
-// metal of roughness 0.01 (alpha = 1e-4) at L = V = N has F = 1, V = 1/4 on both paths and
-// D = 1/(pi alpha_t alpha_b) = 1/(pi 1e-4 1e-3) with the extension, D = 1/(pi alpha^2) = 1/(pi 1e-8)
-// without: 7.9577e5 against 7.9577e6.
+// metal (F = 1) of roughness 0.01 (alpha = 1e-4) with L = V = (sin 0.1, 0, cos 0.1) = H: H.B = 0,
+// so both paths have V = 0.25 / (c sqrt(c^2 (1 - a^2) + a^2)), and D = a^2 / (pi (c^2 (a^2 - 1) + 1)^2)
+// without the extension against 1 / (pi a 0.001 (s^2/a^2 + c^2)^2) with it, about 10x smaller.
+// (Off N.H = 1: there the engine's float D is infinite at this roughness.)
 TEST(ProfileEngineFacts, KhronosTakesTheAnisotropicPathWhenTheExtensionIsPresent) {
   const auto parsed = parseMaterials(
       R"({"materials": [
@@ -105,17 +106,85 @@ TEST(ProfileEngineFacts, KhronosTakesTheAnisotropicPathWhenTheExtensionIsPresent
   ASSERT_EQ(parsed.size(), 2u);
   EXPECT_FALSE(parsed[0].anisotropyExtension);
   EXPECT_TRUE(parsed[1].anisotropyExtension);
-  const auto absent = evalOne(parsed[0], Profile::Khronos, Lobe::Specular, kN, kN);
-  const auto present = evalOne(parsed[1], Profile::Khronos, Lobe::Specular, kN, kN);
-  const double roughnessDouble = double(0.01f), alpha = roughnessDouble * roughnessDouble;
-  const double wantAbsent = 0.25 / (kPi * alpha * alpha);
-  const double wantPresent = 0.25 / (kPi * alpha * 0.001);
+  const std::array<double, 3> dir{std::sin(0.1), 0.0, std::cos(0.1)};
+  const auto absent = evalOne(parsed[0], Profile::Khronos, Lobe::Specular, dir, dir);
+  const auto present = evalOne(parsed[1], Profile::Khronos, Lobe::Specular, dir, dir);
+  const double a = double(0.01f) * double(0.01f), c = double(float(std::cos(0.1))), s = std::sqrt(1.0 - c * c);
+  const double V = 0.25 / (c * std::sqrt(c * c * (1.0 - a * a) + a * a));
+  const double f = c * c * (a * a - 1.0) + 1.0;
+  const double wantAbsent = a * a / (kPi * f * f) * V;
+  const double q = s * s / (a * a) + c * c;
+  const double wantPresent = 1.0 / (kPi * a * 0.001 * q * q) * V;
   EXPECT_NEAR(absent[0], wantAbsent, 1e-4 * wantAbsent);
   EXPECT_NEAR(present[0], wantPresent, 1e-4 * wantPresent);
+  EXPECT_LT(wantPresent, 0.2 * wantAbsent) << "the input tells the paths apart";
   // Under spec, presence at strength 0 changes nothing.
-  const auto specAbsent = evalOne(parsed[0], Profile::Spec, Lobe::Specular, kN, kN);
-  const auto specPresent = evalOne(parsed[1], Profile::Spec, Lobe::Specular, kN, kN);
+  const auto specAbsent = evalOne(parsed[0], Profile::Spec, Lobe::Specular, dir, dir);
+  const auto specPresent = evalOne(parsed[1], Profile::Spec, Lobe::Specular, dir, dir);
   EXPECT_EQ(specAbsent[0], specPresent[0]);
+}
+
+// The Sample Renderer's D_GGX denominator N.H^2 (a^2 - 1) + 1 is exactly 0 in float at N.H = 1
+// once a^2 - 1 rounds to -1 (a^2 <= 2^-25, roughness below about 0.013): D is infinite, and
+// mix(S F_d, S F_m, metallic) makes the specular NaN at any metallic (0 * inf); the coat, which is
+// only scaled, is +inf. At roughness 0.2 the same input stays finite.
+TEST(ProfileEngineFacts, KhronosDIsInfiniteWhereTheEnginesFloatDenominatorIsZero) {
+  for (float metallic : {0.0f, 1.0f}) {
+    MaterialParams m = dielectric(1e-4f, 1.5f);
+    m.metallic = metallic;
+    for (double v : evalOne(m, Profile::Khronos, Lobe::Specular, kN, kN))
+      EXPECT_TRUE(std::isnan(v)) << "metallic " << metallic << ": " << v;
+    m.roughness = 0.2f;
+    for (double v : evalOne(m, Profile::Khronos, Lobe::Specular, kN, kN)) EXPECT_TRUE(std::isfinite(v));
+  }
+  MaterialParams coated = dielectric(0.5f, 1.5f);
+  coated.clearcoat = 1.0f;
+  coated.clearcoatRoughness = 1e-4f;
+  for (double v : evalOne(coated, Profile::Khronos, Lobe::Clearcoat, kN, kN))
+    EXPECT_TRUE(std::isinf(v) && v > 0.0) << v;
+}
+
+// With the extension present at roughness 0, alpha_t = mix(0, 1, 0) = 0 and the engine's
+// D_GGX_anisotropic (a = at ab, w2 = a / |(ab H.T, at H.B, a N.H)|^2, D = a w2^2 / pi) is 0
+// off N.H = 1: the specular lobe is 0 there, not NaN (dividing H.T by at first gives 0 * inf).
+TEST(ProfileEngineFacts, KhronosAnisotropicRoughness0IsZeroOffTheMirror) {
+  MaterialParams m = dielectric(0.0f, 1.5f);
+  m.anisotropyExtension = true;
+  const std::array<double, 3> L{0.6, 0.0, 0.8}, V{0.0, 0.8, 0.6};
+  for (double v : evalOne(m, Profile::Khronos, Lobe::Specular, L, V)) EXPECT_EQ(v, 0.0);
+  for (double v : evalOne(m, Profile::Khronos, Lobe::Specular, kN, kN)) EXPECT_TRUE(std::isnan(v)) << v;
+}
+
+// The Sample Renderer's D_Charlie takes sin^2 = 1 - N.H^2 in float, which is 1 for N.H below about
+// 1.7e-4; at sheen roughness 0 (floored to 1e-6, alpha 1e-12) D is then (2 + 1e12)/(2 pi), not the
+// exact (sin^2)^(5e11) = 0. L = (s, 0, c), V = (0, s, c) with c = 1e-4 give N.H = sqrt(2) c; V_Sheen is
+// clamped to 1 there, so the sheen lobe is sheenColor (2 + 1/alpha)/(2 pi).
+TEST(ProfileEngineFacts, KhronosSheenDUsesTheEnginesFloatSin2) {
+  MaterialParams m = dielectric(0.5f, 1.5f);
+  m.sheenColor = {1.0f, 0.8f, 0.6f};
+  m.sheenRoughness = 0.0f;
+  const double c = 1e-4, s = std::sqrt(1.0 - c * c);
+  const auto got = evalOne(m, Profile::Khronos, Lobe::Sheen, {s, 0.0, c}, {0.0, s, c});
+  const double alpha = double(1e-6f) * double(1e-6f);
+  const double want = (2.0 + 1.0 / alpha) / (2.0 * kPi);
+  for (int i = 0; i < 3; ++i) EXPECT_NEAR(got[i], m.sheenColor[i] * want, 1e-4 * want) << "channel " << i;
+}
+
+// 1 - F_Schlick(f0, 1, V.H) and the coat's 1 - cc F_Schlick(f0, 1, N.V) computed without
+// cancellation: on the mirror pair L = (s, 0, c), V = (-s, 0, c), c = 1e-6, H = N and
+// V.H = N.V = c, the diffuse lobe is (1 - f0)(1 - (1 - c)^5) b/pi, times (1 - f0)(1 - (1 - c)^5)
+// more under a full coat (IOR 1.5: f0 = 0.04 for both). Written as 1 - F in float these lose
+// several percent.
+TEST(ProfileEngineFacts, KhronosOneMinusFresnelKeepsItsDigitsAtGrazingVdotH) {
+  const double c = double(float(1e-6)), s = std::sqrt(1.0 - c * c);
+  const double w = (1.0 - 0.04) * (1.0 - std::pow(1.0 - c, 5.0));
+  MaterialParams m = dielectric(0.3f, 1.5f);
+  const auto bare = evalOne(m, Profile::Khronos, Lobe::Diffuse, {s, 0.0, c}, {-s, 0.0, c});
+  EXPECT_NEAR(bare[0], w * 0.5 / kPi, 1e-3 * w * 0.5 / kPi);
+  m.clearcoat = 1.0f;
+  m.clearcoatRoughness = 0.5f;
+  const auto coated = evalOne(m, Profile::Khronos, Lobe::Diffuse, {s, 0.0, c}, {-s, 0.0, c});
+  EXPECT_NEAR(coated[0], w * w * 0.5 / kPi, 1e-3 * w * w * 0.5 / kPi);
 }
 
 // Filament's D_GGX caps k = alpha / (1 - N.H^2 + (N.H alpha)^2) at 453.5, so D <= 453.5^2/pi

@@ -64,11 +64,40 @@ BRDF_FN realw D_GGX_HalfAngle(realw sin2, realw cos2, realw alpha) {
   return a2 / (M_PI_F * d * d);
 }
 
+/* D_GGX_HalfAngle where the engine's own float form f = N.H^2 (alpha^2 - 1) + 1 is exactly 0
+   (N.H = 1 with alpha^2 - 1 rounding to -1, i.e. alpha^2 <= 2^-25): D = alpha^2 / 0, infinite
+   (NaN at alpha = 0), as the engine gets it; elsewhere the accurate half-angle form. */
+BRDF_FN realw D_GGX_EngineZero(realw sin2, realw cos2, realw hz, realw alpha) {
+  realw a2 = alpha * alpha;
+  realw f = hz * hz * (a2 - 1.0f) + 1.0f;
+  realw d = select(sin2 + cos2 * a2, (realw)(0.0f), f == 0.0f);
+  return a2 / (M_PI_F * d * d);
+}
+
+/* Charlie sheen written as the Sample Renderer writes it, sin^2 = 1 - N.H^2 in float: below
+   N.H ~ 1.7e-4 that rounds to 1, so at sheen roughness 0 (alpha 1e-12) D is (2 + 1/alpha)/2pi
+   there, as the engine has it, not the exact (sin^2)^(1/(2 alpha)) = 0. */
+BRDF_FN realw D_CharlieOneMinusCos2(realw hz, realw alpha) {
+  realw inv_a = 1.0f / alpha;
+  realw sin2 = 1.0f - hz * hz;
+  return (2.0f + inv_a) * brdf_exp2(0.5f * inv_a * brdf_log2(sin2)) * (0.5f / M_PI_F);
+}
+
 /* Burley 2012 anisotropic GGX over unit-H components (T, B, N). */
 BRDF_FN realw D_Burley(realw ht, realw hb, realw hn, realw at, realw ab) {
   realw t = ht / at, b = hb / ab;
   realw d = t * t + b * b + hn * hn;
   return 1.0f / (M_PI_F * at * ab * d * d);
+}
+
+/* The same D in the grouping the Sample Renderer and Babylon write: a = at ab,
+   w2 = a / |(ab H.T, at H.B, a H.N)|^2, D = a w2^2 / pi. At at = 0 it is 0 off N.H = 1 (where
+   the division by at above is 0 * inf = NaN) and NaN at N.H = 1. */
+BRDF_FN realw D_BurleyW2(realw ht, realw hb, realw hn, realw at, realw ab) {
+  realw a = at * ab;
+  realw fx = ab * ht, fy = at * hb, fz = a * hn;
+  realw w2 = a / (fx * fx + fy * fy + fz * fz);
+  return a * w2 * w2 / M_PI_F;
 }
 
 /* Heitz 2014 anisotropic height-correlated Smith: the two terms of its denominator, summed. */
