@@ -342,8 +342,6 @@ TEST(CacheHostile, CorruptEntriesAreRecomputed) {
     // The program eval builds is one of them: damage all, and only what the run reads warns.
     const auto targets = entriesOf(c, d.prefix);
     ASSERT_FALSE(targets.empty()) << d.what;
-    std::map<fs::path, std::uintmax_t> sizes;
-    for (const auto& p : targets) sizes[p] = fs::file_size(p);
     if (d.prefix == "program_") {
       for (const auto& p : targets) d.apply(p);
     } else {
@@ -351,9 +349,14 @@ TEST(CacheHostile, CorruptEntriesAreRecomputed) {
     }
     const RunResult r = c.eval();
     expectRecovered(c, r, 1, c.cache().string(), d.what);
-    // The damaged entry the run read was stored again whole.
+    // The damaged entry the run read was stored again whole. A program binary's size may differ
+    // from the first store's (PoCL includes the work-group variants its own cache holds by then),
+    // so "whole" means that the entry parses and checks out under its name.
+    const std::vector<fs::path> damaged =
+        d.prefix == "program_" ? targets : std::vector<fs::path>{targets[0]};
     std::size_t whole = 0;
-    for (const auto& p : targets) whole += fs::exists(p) && fs::file_size(p) == sizes[p];
+    for (const auto& p : damaged)
+      whole += fs::exists(p) && brdfcl::detail::parseCacheEntry(slurp(p.string()), p.filename().string()).has_value();
     EXPECT_GE(whole, 1u) << d.what;
   }
 }
