@@ -53,7 +53,9 @@ fuzz: deps
 	@cmake --build --preset fuzz -j $(JOBS)
 	@FUZZ_SECONDS=$(FUZZ_SECONDS) tests/fuzz/run
 
-demo: build
+# The demo needs the CLI alone: the tests and benchmarks are not built for it.
+demo: configure
+	@cmake --build --preset $(PRESET) -j $(JOBS) --target brdfcl
 	@build/bin/brdfcl demo
 
 bench: build
