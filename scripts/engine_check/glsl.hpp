@@ -96,3 +96,15 @@ struct Ctx {
     ec::Ctx c(LOBE);                                                                   \
     return NAME##__engine(a...);                                                       \
   }
+
+// As EC_LOBE_HOOK, for a lobe whose out-parameters feed the other lobes (a coat's Fresnel weight):
+// it always runs, and a run that does not keep LOBE gets 0 from its return value only.
+#define EC_LOBE_HOOK_LAYER(NAME, LOBE)                                                 \
+  template <class... A>                                                                \
+  inline auto NAME(A&&... a) -> decltype(NAME##__engine(a...)) {                       \
+    using R = decltype(NAME##__engine(a...));                                          \
+    if (ec::g_ctx != 0) return NAME##__engine(a...);                                   \
+    ec::Ctx c(LOBE);                                                                   \
+    R r = NAME##__engine(a...);                                                        \
+    return ec::g_lobe != ec::ALL && ec::g_lobe != (LOBE) ? R(0) : r;                   \
+  }
