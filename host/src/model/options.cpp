@@ -38,7 +38,7 @@ struct PinnedEngine {
 };
 constexpr PinnedEngine kEngines[] = {
     {Profile::Spec,
-     {"glTF 2.0 specifications", "ratified core, KHR_materials_sheen, KHR_materials_clearcoat and KHR_materials_anisotropy"}},
+     {"glTF 2.0", "ratified core, KHR_materials_sheen, KHR_materials_clearcoat and KHR_materials_anisotropy specifications"}},
     {Profile::Khronos,
      {"glTF Sample Renderer",
       "KhronosGroup/glTF-Sample-Renderer pbr.frag@9dfbb82b, material_info.glsl@07d2ba65, "
