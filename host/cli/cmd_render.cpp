@@ -23,6 +23,7 @@
 #include "brdfcl/image.hpp"
 #include "brdfcl/image_diff.hpp"
 #include "brdfcl/io.hpp"
+#include "brdfcl/profile_version.hpp"
 #include "brdfcl/render.hpp"
 #include "brdfcl/render_job.hpp"
 #include "commands.hpp"
@@ -209,6 +210,15 @@ struct ProfileArgs {
     o.profile = parseProfile(against, "--diff-against");
     return o;
   }
+  // After the outputs are written (an error stays the only line of a failed run): the engine and
+  // commits each named profile reproduces, since engines change their maths between commits.
+  void printEngines(CLI::App* cmd) const {
+    if (cmd->count("--profile"))
+      std::fprintf(stderr, "brdfcl: profile %s\n", describeProfile(parseProfile(profile)).c_str());
+    const CLI::Option* diff = cmd->get_option_no_throw("--diff-against");  // shade has none
+    if (diff != nullptr && diff->count() > 0)
+      std::fprintf(stderr, "brdfcl: profile %s\n", describeProfile(parseProfile(against, "--diff-against")).c_str());
+  }
 };
 
 // The rows of a frame `height` rows tall that each rank shades under mpirun, indexed by rank:
@@ -362,7 +372,9 @@ void addRenderCommands(CLI::App& app) {
       });
       gatherRows(img, shares);
       session.together([&] {
-        if (writesOutputs()) writeImages(img, exr, png, a->exposure);
+        if (!writesOutputs()) return;
+        writeImages(img, exr, png, a->exposure);
+        a->profile.printEngines(cmd);
       });
     });
   }
@@ -474,6 +486,7 @@ void addRenderCommands(CLI::App& app) {
         if (!writesOutputs()) return;
         if (!diff) {
           writeImages(img, exr, png, a->exposure);
+          a->profile.printEngines(cmd);
           return;
         }
         if (!exr.empty()) writeImages(img, exr, "", a->exposure);
@@ -481,6 +494,7 @@ void addRenderCommands(CLI::App& app) {
         const ImageDiff d = diffImages(img.rgb, other.rgb, img.width, img.height);
         writeImageDiffPng(a->out, d, nameA, nameB, defaultDiffRange(d.stats));
         std::fputs(formatImageDiff(d.stats, nameA, nameB).c_str(), detail::isStreamTarget(a->out) ? stderr : stdout);
+        a->profile.printEngines(cmd);
       });
     });
   }

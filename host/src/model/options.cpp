@@ -5,6 +5,7 @@
 
 #include "brdfcl/error.hpp"
 #include "brdfcl/material.hpp"
+#include "brdfcl/profile_version.hpp"
 
 namespace brdfcl {
 namespace {
@@ -29,6 +30,35 @@ constexpr Spelling<Lobe> kLobe[] = {{Lobe::All, "all"},
 constexpr Spelling<Profile> kProfile[] = {{Profile::Spec, "spec"},         {Profile::Khronos, "khronos"},
                                           {Profile::Threejs, "threejs"},   {Profile::Filament, "filament"},
                                           {Profile::Babylon, "babylon"},   {Profile::Materialx, "materialx"}};
+
+// The pins of docs/profiles.md, spelled as there (test_profile_versions checks every hash against it).
+struct PinnedEngine {
+  Profile profile;
+  EngineVersion version;
+};
+constexpr PinnedEngine kEngines[] = {
+    {Profile::Spec,
+     {"glTF 2.0", "ratified core, KHR_materials_sheen, KHR_materials_clearcoat and KHR_materials_anisotropy specifications"}},
+    {Profile::Khronos,
+     {"glTF Sample Renderer",
+      "KhronosGroup/glTF-Sample-Renderer pbr.frag@9dfbb82b, material_info.glsl@07d2ba65, "
+      "brdf.glsl of glTF-Sample-Viewer@d0b428c8, material.js@aa1ab251 (no release tag)"}},
+    {Profile::Threejs,
+     {"three.js WebGPU renderer (TSL)",
+      "mrdoob/three.js PhysicalLightingModel.js@011d3c8d, BRDF_Sheen.js@011d3c8d, BRDF_GGX.js@343d19d7, "
+      "F_Schlick.js@15b5d80a, DFGLUT.js@79a613e6, getRoughness.js@07e4c12b (no release tag)"}},
+    {Profile::Filament,
+     {"Filament",
+      "google/filament surface_brdf.fs@04d50d42, surface_shading_model_standard.fs@1b47d187, "
+      "common_material.fs@0371a805, desktop (no release tag)"}},
+    {Profile::Babylon,
+     {"Babylon.js PBRMaterial",
+      "BabylonJS/Babylon.js pbrBRDFFunctions.fx@00e0487b, pbrBlockSheen.fx@626ee12b, pbrBlockClearcoat.fx@011c37f9, "
+      "pbrBlockAnisotropic.fx@036892d8, pbrBlockReflectance.fx@158c4a70 (no release tag)"}},
+    {Profile::Materialx,
+     {"MaterialX gltf_pbr",
+      "1.39.5+ at commit 4177b2cb (main, 2026-07-01, after release v1.39.5; gltf_pbr nodedef 2.0.1)"}},
+};
 
 // The message must stay on one line even if the argument does not.
 std::string printable(const std::string& s) {
@@ -73,5 +103,16 @@ const char* toString(SheenDistribution d) { return nameOf(kDistribution, d); }
 const char* toString(SheenScaling s) { return nameOf(kScaling, s); }
 const char* toString(Lobe l) { return nameOf(kLobe, l); }
 const char* toString(Profile p) { return nameOf(kProfile, p); }
+
+EngineVersion profileEngineVersion(Profile p) {
+  for (const auto& e : kEngines)
+    if (e.profile == p) return e.version;
+  return {"?", "?"};  // only reachable with a value cast from an out-of-range integer
+}
+
+std::string describeProfile(Profile p) {
+  const EngineVersion v = profileEngineVersion(p);
+  return std::string(toString(p)) + ": " + v.engine + " " + v.version;
+}
 
 }  // namespace brdfcl

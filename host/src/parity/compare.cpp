@@ -15,6 +15,7 @@
 #include "brdfcl/albedo.hpp"
 #include "brdfcl/error.hpp"
 #include "brdfcl/evaluator.hpp"
+#include "brdfcl/profile_version.hpp"
 #include "io/messages.hpp"
 #include "parity/image_diff.hpp"
 
@@ -264,6 +265,8 @@ std::string formatComparison(const Comparison& c) {
   const char* a = toString(o.a);
   const char* b = toString(o.b);
   std::string s = fmt::format("brdfcl compare: A = {} against B = {} on {}\n", a, b, c.device);
+  // The engines change between commits: the report names the pins its numbers hold for.
+  s += fmt::format("A = {}\nB = {}\n", describeProfile(o.a), describeProfile(o.b));
   s += fmt::format(
       "Samples: {} in the incidence plane ({} x {} cell centres of theta_L x theta_V in [0, 90) deg, L and V at\n"
       "opposite azimuths) and {} out of it (L and V uniform on the hemisphere, seed {}).\n"
@@ -304,6 +307,13 @@ std::string formatComparison(const Comparison& c) {
   }
   return s;
 }
+
+namespace {
+nlohmann::json engineJson(Profile p) {
+  const EngineVersion v = profileEngineVersion(p);
+  return {{"engine", v.engine}, {"version", v.version}};
+}
+}  // namespace
 
 std::string comparisonJson(const Comparison& c, const std::vector<std::vector<std::string>>& heatMapPaths) {
   const CompareOptions& o = c.options;
@@ -354,6 +364,8 @@ std::string comparisonJson(const Comparison& c, const std::vector<std::vector<st
   }
   const nlohmann::json j = {{"profile", toString(o.a)},
                             {"against", toString(o.b)},
+                            {"profile_engine", engineJson(o.a)},
+                            {"against_engine", engineJson(o.b)},
                             {"device", c.device},
                             {"grid", o.gridSize},
                             {"in_plane_samples", c.inPlaneSamples},
