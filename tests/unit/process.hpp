@@ -53,6 +53,15 @@ inline std::string slurp(const std::string& path) {
   return s.str();
 }
 
+// Writes `bytes` as the whole file `path`; throws when the write falls short, so that a test
+// never runs on a half-written input.
+inline void writeFile(const std::string& path, const std::string& bytes) {
+  std::ofstream out(path, std::ios::binary);
+  out << bytes;
+  out.close();
+  if (!out) throw std::runtime_error("cannot write test input " + path);
+}
+
 // How to run the child beyond its arguments.
 struct ProcessOptions {
   std::map<std::string, std::string> env;  // set (or replace) these variables

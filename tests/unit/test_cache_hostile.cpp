@@ -29,6 +29,7 @@
 namespace fs = std::filesystem;
 using brdfcl::test::RunResult;
 using brdfcl::test::ScratchDir;
+using brdfcl::test::writeFile;
 using brdfcl::test::slurp;
 
 namespace {
@@ -38,11 +39,6 @@ constexpr bool kAsan = brdfcl::test::kAddressSanitizer;
 const char* kMaterials = R"({"materials": [{"pbrMetallicRoughness": {"roughnessFactor": 0.5},
   "extensions": {"KHR_materials_sheen": {"sheenColorFactor": [0.5, 0.4, 0.3], "sheenRoughnessFactor": 0.4}}}]})";
 const char* kSamples = "material,Lx,Ly,Lz,Vx,Vy,Vz\n0,0,0,1,0,0,1\n0,0.5,0,1,0,0.25,1\n0,-0.5,0.5,1,0.5,0,1\n";
-
-void writeFile(const std::string& p, const std::string& content) {
-  std::ofstream out(p, std::ios::binary);
-  out << content;
-}
 
 // A scratch folder with eval's inputs and its own cache home (`cache/brdfcl` below it).
 struct Case {

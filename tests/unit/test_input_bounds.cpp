@@ -28,6 +28,7 @@
 using namespace brdfcl;
 using brdfcl::test::RunResult;
 using brdfcl::test::ScratchDir;
+using brdfcl::test::writeFile;
 
 namespace {
 
@@ -71,10 +72,6 @@ class ScopedEnv {
   std::string saved_;
   bool had_ = false;
 };
-
-void writeFile(const std::string& path, const std::string& bytes) {
-  std::ofstream(path, std::ios::binary) << bytes;
-}
 
 std::uint32_t crc32(const std::string& bytes, std::size_t from, std::size_t to) {
   std::uint32_t c = 0xFFFFFFFFu;

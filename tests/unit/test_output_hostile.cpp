@@ -30,28 +30,16 @@
 #include "gltf_builder.hpp"
 #include "host/src/io/temporaries.hpp"
 #include "process.hpp"
+#include "support.hpp"
 
 namespace fs = std::filesystem;
 using brdfcl::test::RunResult;
 using brdfcl::test::ScratchDir;
+using brdfcl::test::writeFile;
+using brdfcl::test::errorOf;
 using brdfcl::test::slurp;
 
 namespace {
-
-void writeFile(const std::string& p, const std::string& content) {
-  std::ofstream out(p, std::ios::binary);
-  out << content;
-  ASSERT_TRUE(out.good()) << p;
-}
-
-std::string errorOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const brdfcl::Error& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
 
 mode_t modeOf(const std::string& p) {
   struct stat st {};
