@@ -98,9 +98,8 @@ def test_throughput_vs_bench(measured, cli):
     pre-normalized planes, in memory) on the same 4M pairs and the same material (the bench's one
     random material, all layers), both medians of repeated runs.
 
-    The issue asks for within 10 %. Measured on PoCL, 2 cores, into a reused out= array: 0.91 to
-    0.96 on the idle machine, 0.90 to 0.93 with a build beside it (0.43 at the last stop, 0.22
-    before). Python's call reads L and V and writes the result
+    The bound is within 10 %. Measured on PoCL, 2 cores, into a reused out= array: 0.91 to
+    0.96 on the idle machine, 0.90 to 0.93 with a build beside it. Python's call reads L and V and writes the result
     where they lie (the row kernel, no copy); the device then does what the bench's planes had
     done before its clock started: it deinterleaves the rows, normalizes both directions and
     checks them (BM_InMemory/all/{kernel,arrays} in bench/README.md: 0.95 on one material). The

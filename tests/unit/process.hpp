@@ -62,6 +62,15 @@ inline void writeFile(const std::string& path, const std::string& bytes) {
   if (!out) throw std::runtime_error("cannot write test input " + path);
 }
 
+// The id of a process that has already exited and been reaped: one that no live process has.
+inline pid_t deadPid() {
+  const pid_t pid = ::fork();
+  if (pid == 0) ::_exit(0);
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  return pid;
+}
+
 // How to run the child beyond its arguments.
 struct ProcessOptions {
   std::map<std::string, std::string> env;  // set (or replace) these variables

@@ -1,4 +1,4 @@
-// Tests of the input checks of issue 14: typos in materials files and glTF materials (warnings with
+// Tests of the input checks: typos in materials files and glTF materials (warnings with
 // the JSON path and "did you mean", errors under --strict), a .glb given as materials, CSV samples
 // with columns in any order, `--samples -` (CSV or NPY on stdin) and the --grid hint.
 #include <gtest/gtest.h>
@@ -32,7 +32,7 @@ using brdfcl::test::ScratchDir;
 
 namespace {
 
-// The issue's typos: each left a factor at its default without a word. `material` is one
+// Typos that once left a factor at its default without a word. `material` is one
 // material object; `warning` the whole line the reader must give for it, source name "m.json".
 struct Typo {
   const char* material;

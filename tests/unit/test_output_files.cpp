@@ -1,4 +1,4 @@
-// The output-file layer (issue 14): "-" is stdout, symlinks are followed and stay links, FIFOs are
+// The output-file layer: "-" is stdout, symlinks are followed and stay links, FIFOs are
 // written in place, directories and unknown results extensions are refused before anything is
 // written, signals remove temporaries (exit 128 + signal), stale temporaries of dead processes go.
 #include <fcntl.h>
@@ -30,6 +30,7 @@
 namespace fs = std::filesystem;
 using brdfcl::test::RunResult;
 using brdfcl::test::ScratchDir;
+using brdfcl::test::deadPid;
 using brdfcl::test::slurp;
 
 namespace {
@@ -434,14 +435,6 @@ void expectSignalRemovesTemporary(int signo) {
 TEST(OutputFiles, SigintRemovesTemporariesAndExits130) { expectSignalRemovesTemporary(SIGINT); }
 TEST(OutputFiles, SigtermRemovesTemporariesAndExits143) { expectSignalRemovesTemporary(SIGTERM); }
 TEST(OutputFiles, SighupRemovesTemporariesAndExits129) { expectSignalRemovesTemporary(SIGHUP); }
-
-pid_t deadPid() {
-  const pid_t pid = ::fork();
-  if (pid == 0) ::_exit(0);
-  int status = 0;
-  ::waitpid(pid, &status, 0);
-  return pid;
-}
 
 // Names in the form ".<name>.tmp.<pid>.<n>" are users' files to the sweep, whatever their pid:
 // it removes only exact temporaries' names (test_output_hostile.cpp TemporarySweep).

@@ -35,6 +35,7 @@
 namespace fs = std::filesystem;
 using brdfcl::test::RunResult;
 using brdfcl::test::ScratchDir;
+using brdfcl::test::deadPid;
 using brdfcl::test::writeFile;
 using brdfcl::test::errorOf;
 using brdfcl::test::slurp;
@@ -132,14 +133,6 @@ TEST(OutputModes, ReplacedFileKeepsItsOwnerWherePermitted) {
 }
 
 // ---- temporaries' names and the sweep ----
-
-pid_t deadPid() {
-  const pid_t pid = ::fork();
-  if (pid == 0) ::_exit(0);
-  int status = 0;
-  ::waitpid(pid, &status, 0);
-  return pid;
-}
 
 void makeOld(const std::string& p) {
   struct timespec times[2];

@@ -595,7 +595,7 @@ TEST(StreamCli, ChunkOutOfRange) {
   EXPECT_EQ(dir.list(), (std::vector<std::string>{"m.json", "s.csv", "stderr", "stdout"}));
 }
 
-// The bound: a 100M-sample NPY file (2.8 GB of float32) evaluates with under 1 GiB
+// The bound: a 100M-sample NPY file (2.8 GB of float32) evaluates with under 1 GiB
 // resident. BRDFCL_STREAM_SAMPLES overrides the count. Sanitizer builds check 10M samples for
 // correctness only: their shadow memory and quarantine are not the tool's own. Rows repeat a block of random samples, so a
 // spot check of rows anywhere in the output can be computed from the block.
