@@ -28,14 +28,16 @@ const copy = (v) => (Array.isArray(v) ? v.slice() : v);
 const val = (x) => (x instanceof Val ? x.v : typeof x === 'boolean' ? x : Array.isArray(x) ? x.map(val) : x);
 const wrap = (v) => new Val(v);
 
+// A JS number literal in engine code is a shader constant: float, like every other operand.
+const lit = (x) => (typeof x === 'number' ? r(x) : Array.isArray(x) ? x.map(lit) : x);
 function zip(a, b, f) {
-  a = val(a); b = val(b);
+  a = lit(val(a)); b = lit(val(b));
   if (Array.isArray(a) && Array.isArray(b)) return a.map((x, i) => f(x, b[i]));
   if (Array.isArray(a)) return a.map((x) => f(x, b));
   if (Array.isArray(b)) return b.map((y) => f(a, y));
   return f(a, b);
 }
-const map1 = (a, f) => { a = val(a); return Array.isArray(a) ? a.map(f) : f(a); };
+const map1 = (a, f) => { a = lit(val(a)); return Array.isArray(a) ? a.map(f) : f(a); };
 const n1 = (f) => (a) => wrap(map1(a, (x) => r(f(x))));
 const n2 = (f) => (a, b) => wrap(zip(a, b, (x, y) => r(f(x, y))));
 const fold = (f) => (a, ...rest) => rest.reduce((acc, b) => f(acc, b), a instanceof Val ? a : wrap(val(a)));
@@ -60,6 +62,10 @@ export const fract = n1((x) => x - Math.floor(x));
 export const sin = n1(Math.sin);
 export const cos = n1(Math.cos);
 export const negate = n1((x) => -x);
+export const pow2 = (a) => mul(a, a);
+// A flat batch has no screen-space derivatives.
+export const dFdx = (a) => wrap(map1(a, () => 0));
+export const dFdy = dFdx;
 export const oneMinus = n1((x) => 1 - x);
 export const reciprocal = n1((x) => 1 / x);
 export const clamp = (a, lo = 0, hi = 1) => min(max(a, lo), hi);
@@ -76,13 +82,15 @@ export const lessThanEqual = (a, b) => wrap(val(a) <= val(b));
 export const greaterThan = (a, b) => wrap(val(a) > val(b));
 export const greaterThanEqual = (a, b) => wrap(val(a) >= val(b));
 export const equal = (a, b) => wrap(val(a) === val(b));
+export const notEqual = (a, b) => wrap(val(a) !== val(b));
 export const and = (a, b) => wrap(val(a) && val(b));
 export const or = (a, b) => wrap(val(a) || val(b));
 export const not = (a) => wrap(!val(a));
 export const select = (c, a, b) => (val(c) ? wrap(copy(val(a))) : wrap(copy(val(b))));
 
 const METHODS = { add, sub, mul, div, pow, max, min, exp, exp2, log, log2, sqrt, inverseSqrt, abs, sign,
-  floor, fract, sin, cos, negate, oneMinus, reciprocal, clamp, saturate, mix: (a, b, t) => mix(b, t, a),
+  floor, fract, sin, cos, negate, oneMinus, reciprocal, clamp, saturate, mix: (a, b, t) => mix(b, t, a), pow2, dFdx, dFdy,
+  notEqual, element: (a, i) => wrap(val(a)[val(i)]),
   step: (x, e) => step(e, x), dot, length, normalize, cross, lessThan, lessThanEqual, greaterThan,
   greaterThanEqual, equal, and, or, not, select: (c, a, b) => select(c, a, b) };
 for (const [k, f] of Object.entries(METHODS)) Val.prototype[k] = function (...a) { return f(this, ...a); };
@@ -106,6 +114,9 @@ export const vec4 = vec(4);
 export const color = vec3;
 export const PI = wrap(r(Math.PI));
 export const EPSILON = wrap(1e-6);
+export const mat3 = (...a) => wrap(a.flatMap((x) => { const v = val(x); return Array.isArray(v) ? v : [v]; }).map(r));
+// TSL's defined(): a node's value, anything else as it is.
+export const defined = (v) => (v instanceof Val ? v.v : typeof v === 'object' && v !== null ? v.value : v);
 
 // Fn(f): a function over nodes; TSL passes inputs as one object (or as a list with setLayout).
 // Positional arguments arrive as an array that also carries the layout's input names.
@@ -121,6 +132,7 @@ export function Fn(f) {
   g.setLayout = (layout) => { names = (layout.inputs || []).map((i) => i.name); return g; };
   return g;
 }
+export const tslFn = Fn;
 export function If(c, body) {
   let done = !!val(c);
   if (done) body();
@@ -139,3 +151,46 @@ export function missing(name) {
     apply() { throw new Error(`TSL stand-in lacks ${name}()`); },
   });
 }
+
+// Textures: a DataTexture keeps its texels; texture(t, uv) samples them as a GPU samples a
+// half-float texture with linear filtering and clamp-to-edge (texel centres at (i + 0.5)/size).
+const half = (h) => { const e = (h >> 10) & 0x1f, m = h & 0x3ff, s = h & 0x8000 ? -1 : 1;
+  return e === 0 ? s * m * 2 ** -24 : e === 31 ? (m ? NaN : s * Infinity) : s * (m + 1024) * 2 ** (e - 25); };
+export class DataTexture {
+  constructor(data, width, height, format, type) { Object.assign(this, { data, width, height, format, type }); }
+}
+export function texture(t, uv) {
+  const [u, v] = val(uv).map(r);
+  const n = t.data.length / (t.width * t.height);
+  const x = min(max(sub(mul(u, t.width), 0.5), 0), t.width - 1).v;
+  const y = min(max(sub(mul(v, t.height), 0.5), 0), t.height - 1).v;
+  const x0 = Math.min(Math.floor(x), t.width - 2), y0 = Math.min(Math.floor(y), t.height - 2);
+  const fx = r(x - x0), fy = r(y - y0);
+  const at = (i, j, c) => r(half(t.data[(j * t.width + i) * n + c]));
+  const out = [];
+  for (let c = 0; c < n; ++c) {
+    const lo = mix(at(x0, y0, c), at(x0 + 1, y0, c), fx), hi = mix(at(x0, y0 + 1, c), at(x0 + 1, y0 + 1, c), fx);
+    out.push(mix(lo, hi, fy).v);
+  }
+  while (out.length < 4) out.push(out.length === 3 ? 1 : 0);
+  return wrap(out);
+}
+// The viewport textures of transmission: created when the lighting model's module loads, never
+// sampled by the direct-light path the check runs.
+export const viewportMipTexture = () => missing('viewportMipTexture()');
+export const viewportOpaqueMipTexture = () => missing('viewportOpaqueMipTexture()');
+
+// three.js's per-fragment state (PropertyNode, Normal, Position, AccessorsUtils): nodes whose
+// values a driver sets before it runs the engine's lighting model.
+const state = (n) => new Val(n === 1 ? 0 : new Array(n).fill(0));
+export const diffuseColor = state(4), diffuseContribution = state(3), diffuseRoughness = state(1);
+export const specularColor = state(3), specularColorBlended = state(3), specularF90 = state(1);
+export const roughness = state(1), metalness = state(1), ior = state(1);
+export const clearcoat = state(1), clearcoatRoughness = state(1), sheen = state(3), sheenRoughness = state(1);
+export const iridescence = state(1), iridescenceIOR = state(1), iridescenceThickness = state(1);
+export const anisotropy = state(1), alphaT = state(1), anisotropyT = state(3), anisotropyB = state(3);
+export const thickness = state(1), transmission = state(1), attenuationDistance = state(1), attenuationColor = state(3);
+export const dispersion = state(1), retroreflectivity = state(1);
+export const normalView = state(3), clearcoatNormalView = state(3), transformedNormalView = normalView;
+export const normalWorld = state(3), normalGeometry = state(3);
+export const positionViewDirection = state(3), positionView = state(3), positionWorld = state(3);
