@@ -45,7 +45,7 @@ constexpr PinnedEngine kEngines[] = {
       "brdf.glsl of glTF-Sample-Viewer@d0b428c8, material.js@aa1ab251 (no release tag)"}},
     {Profile::Threejs,
      {"three.js WebGPU renderer (TSL)",
-      "mrdoob/three.js PhysicalLightingModel.js@011d3c8d, BRDF_Sheen.js@011d3c8d, BRDF_GGX.js@343d19d7, "
+      "mrdoob/three.js PhysicalLightingModel.js@011d3c8d, BRDF_Sheen.js@011d3c8d, BRDF_GGX.js@3a98b6a0, "
       "F_Schlick.js@15b5d80a, DFGLUT.js@79a613e6, getRoughness.js@07e4c12b (no release tag)"}},
     {Profile::Filament,
      {"Filament",
