@@ -153,7 +153,7 @@ export function missing(name) {
 }
 
 // Textures: a DataTexture keeps its texels; texture(t, uv) samples them as a GPU samples a
-// half-float texture with linear filtering and clamp-to-edge (texel centres at (i + 0.5)/size).
+// texture with linear filtering and clamp-to-edge (texel centres at (i + 0.5)/size).
 const half = (h) => { const e = (h >> 10) & 0x1f, m = h & 0x3ff, s = h & 0x8000 ? -1 : 1;
   return e === 0 ? s * m * 2 ** -24 : e === 31 ? (m ? NaN : s * Infinity) : s * (m + 1024) * 2 ** (e - 25); };
 export class DataTexture {
@@ -166,7 +166,8 @@ export function texture(t, uv) {
   const y = min(max(sub(mul(v, t.height), 0.5), 0), t.height - 1).v;
   const x0 = Math.min(Math.floor(x), t.width - 2), y0 = Math.min(Math.floor(y), t.height - 2);
   const fx = r(x - x0), fy = r(y - y0);
-  const at = (i, j, c) => r(half(t.data[(j * t.width + i) * n + c]));
+  const texel = t.data instanceof Uint16Array ? half : (x) => x;  // half-float bits, or float texels
+  const at = (i, j, c) => r(texel(t.data[(j * t.width + i) * n + c]));
   const out = [];
   for (let c = 0; c < n; ++c) {
     const lo = mix(at(x0, y0, c), at(x0 + 1, y0, c), fx), hi = mix(at(x0, y0 + 1, c), at(x0 + 1, y0 + 1, c), fx);
