@@ -500,15 +500,18 @@ Lobes materialx(const Mat& q, const Geometry& g) {
   const double specD = DV * Fd * compD;
   const double td = 1.0 - (f0ior * fitBase[0] + fitBase[1]) * compD;
 
+  // Each BSDF returns at once (no response, throughput 1) when its weight is below M_FLOAT_EPS = 1e-8:
+  // the sheen's weight is max3(c), the coat's cc (compared with the float the GLSL literal is).
+  const double epsF = static_cast<double>(1e-8f);
   double ts = 1.0, sheenDV = 0.0;
-  if (q.sheen) {
+  if (q.sheen && q.maxC >= epsF) {
     const double alphaS = q.rs * q.rs;
     sheenDV = D_CharlieS(std::max(alphaS, 0.005), 1.0 - g.NdotH * g.NdotH) * V_Neubelt(g.NdotL, g.NdotV);
     ts = 1.0 - q.maxC * mxSheenAlbedo(g.NdotV, alphaS);  // view only, unfloored alpha
   }
 
   double tc = 1.0, coat = 0.0;
-  if (q.coat) {
+  if (q.coat && q.cc >= epsF) {
     const double alphaC = std::clamp(q.rc * q.rc, 1e-8, 1.0);
     const double Fc = F_diel(g.VdotH, 1.5);
     const double compC = comp(F_diel(1.0, 1.5), 1.0, alphaC);  // the coat's normal-incidence F

@@ -227,35 +227,35 @@ static inline float3 profile_ibl(const profile_ibl_env* e, const profile_ibl_fra
 }
 
 #elif BRDFCL_PROFILE == BRDFCL_PROFILE_MATERIALX
-/* gltf_pbr indirect (brdfcl's reading, docs/profiles.md): each BSDF's response is its radiance
-   times its analytic-fit albedo and energy compensation, layered by the same throughputs as the
-   direct light; sheen from the irradiance times E; no bent normal; emission above the coat. */
+/* gltf_pbr indirect (CLOSURE_TYPE_INDIRECT, docs/profiles.md): each BSDF's response is its radiance
+   times its analytic-fit albedo and the same energy compensation as the direct light (tinted by the
+   average Fresnel F0 + (F90 - F0)/21), layered by the same throughputs; sheen from the irradiance
+   times E; a weight below M_FLOAT_EPS leaves a BSDF out; no bent normal; emission above the coat. */
 static inline float3 profile_ibl(const profile_ibl_env* e, const profile_ibl_frame* f, brdfcl_material_params q,
                                  const brdfcl_material* p, float* emission_weight) {
-  float nv = max(dot(f->N, f->V), 1e-4f), avg = sqrt(p->alpha_t * p->alpha);
+  float nv = clamp(dot(f->N, f->V), 1e-8f, 1.0f), avg = sqrt(p->alpha_t * p->alpha);
   float3 base = (float3)(q.base_color[0], q.base_color[1], q.base_color[2]);
   float3 Ls = ibl_radiance(e, reflect_v(f->V, f->N), sqrt(avg));
   float3 irr = ibl_irradiance(e, f->N);
   float A, B;
   DFG_MaterialXFit(nv, avg, &A, &B);
   float E = A + B, f0 = p->ior_f0;
-  float Fd = F_Schlick90(f0, 1.0f, s5f(nv));
-  float comp_d = 1.0f + Fd * (1.0f - E) / E;
-  float3 Fm = base + (1.0f - base) * s5f(nv);
-  float3 comp_m = 1.0f + Fm * (1.0f - E) / E;
+  float comp_d = comp_MaterialX(f0, 1.0f, E);
+  float3 comp_m = 1.0f + (base + (1.0f - base) * (1.0f / 21.0f)) * (1.0f - E) / E;
   float t_d = 1.0f - (f0 * A + B) * comp_d;
   float3 col = (1.0f - q.metallic) * (Ls * (f0 * A + B) * comp_d + t_d * base * irr) + q.metallic * Ls * (base * A + B) * comp_m;
   float sheen_max = brdfcl_max3(q.sheen_color);
-  if (sheen_max > 0.0f) {
+  if (sheen_max >= 1e-8f) {
     float Es = E_SheenMaterialX(nv, p->sheen_alpha);
     col = irr * (float3)(q.sheen_color[0], q.sheen_color[1], q.sheen_color[2]) * Es + (1.0f - sheen_max * Es) * col;
   }
-  float ncv = max(dot(f->Nc, f->V), 1e-4f), Ac, Bc;
-  DFG_MaterialXFit(ncv, p->clearcoat_alpha, &Ac, &Bc);
-  float Fc = F_Dielectric(ncv, 1.5f);
-  float comp_c = 1.0f + Fc * (1.0f - (Ac + Bc)) / (Ac + Bc);
-  float coat = q.clearcoat * (0.04f * Ac + Bc) * comp_c;
-  col = coat * ibl_radiance(e, reflect_v(f->V, f->Nc), sqrt(p->clearcoat_alpha)) + (1.0f - coat) * col;
+  if (q.clearcoat >= 1e-8f) {
+    float ncv = clamp(dot(f->Nc, f->V), 1e-8f, 1.0f), Ac, Bc;
+    DFG_MaterialXFit(ncv, p->clearcoat_alpha, &Ac, &Bc);
+    float comp_c = comp_MaterialX(0.04f, 1.0f, Ac + Bc); /* F_diel(1, 1.5) = 0.04 */
+    float coat = q.clearcoat * (0.04f * Ac + Bc) * comp_c;
+    col = coat * ibl_radiance(e, reflect_v(f->V, f->Nc), sqrt(p->clearcoat_alpha)) + (1.0f - coat) * col;
+  }
   *emission_weight = 1.0f;
   return col;
 }

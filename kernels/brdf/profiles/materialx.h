@@ -44,8 +44,11 @@ BRDF_FN rgbw brdf_profile(const material_lanes m, vec3w L, vec3w V, vec3w Lc, ve
   rgbw sheen = rgbw_splat(0.0f);
 #if BRDFCL_HAS_SHEEN
   {
-    sheen = sheen_coloured(m, D_Charlie(g.sin2, g.cos2, max(m.sheen_alpha, 0.005f)) * V_Ashikhmin(g.NdotL, g.NdotV));
-    realw t_s = 1.0f - m.sheen_max * E_SheenMaterialX(g.NdotV, m.sheen_alpha);
+    /* mx_sheen_bsdf returns at once for a weight max3(c) below M_FLOAT_EPS: no response, throughput 1. */
+    intw on = m.sheen_max >= 1e-8f;
+    realw dv = D_Charlie(g.sin2, g.cos2, max(m.sheen_alpha, 0.005f)) * V_Ashikhmin(g.NdotL, g.NdotV);
+    sheen = sheen_coloured(m, select((realw)(0.0f), dv, on));
+    realw t_s = select((realw)(1.0f), 1.0f - m.sheen_max * E_SheenMaterialX(g.NdotV, m.sheen_alpha), on);
     scale_base(&diffuse, &specular, t_s);
   }
 #endif
@@ -57,10 +60,14 @@ BRDF_FN rgbw brdf_profile(const material_lanes m, vec3w L, vec3w V, vec3w Lc, ve
     DFG_MaterialXFit(gc.NdotV, m.clearcoat_alpha, &Ac, &Bc);
     realw Fc = F_Dielectric(gc.VdotH, 1.5f);
     realw comp_c = comp_MaterialX(0.04f, 1.0f, Ac + Bc); /* F_diel(1, 1.5) = 0.04, F90 = 1 */
-    realw t_c = 1.0f - m.clearcoat * (0.04f * Ac + Bc) * comp_c;
+    /* mx_dielectric_bsdf likewise returns at once for a weight cc below M_FLOAT_EPS. */
+    intw on = m.clearcoat >= 1e-8f;
+    realw t_c = select((realw)(1.0f), 1.0f - m.clearcoat * (0.04f * Ac + Bc) * comp_c, on);
     scale_below(&diffuse, &specular, &sheen, t_c);
-    coat = m.clearcoat * D_GGX_HalfAngle(gc.sin2, gc.cos2, m.clearcoat_alpha) * 0.5f /
-           Lambda_SmithSum(gc.NdotL, gc.NdotV, m.clearcoat_alpha) * Fc * comp_c;
+    coat = select((realw)(0.0f),
+                  m.clearcoat * D_GGX_HalfAngle(gc.sin2, gc.cos2, m.clearcoat_alpha) * 0.5f /
+                      Lambda_SmithSum(gc.NdotL, gc.NdotV, m.clearcoat_alpha) * Fc * comp_c,
+                  on);
   }
 #endif
   return select_lobe(diffuse, specular, sheen, coat);
