@@ -6,10 +6,15 @@
 
 namespace brdfcl {
 
+// `s` with every byte that is not part of valid UTF-8, and every control character but newline
+// and tab, written as \xNN: a message quoting a file's bytes stays readable text on a terminal
+// and decodes as a Python str.
+std::string escapeMessage(const std::string& s);
+
 class Error : public std::runtime_error {
  public:
   explicit Error(const std::string& message, int exitCode = 2)
-      : std::runtime_error(message), exitCode_(exitCode) {}
+      : std::runtime_error(escapeMessage(message)), exitCode_(exitCode) {}
   int exitCode() const { return exitCode_; }
 
  private:
