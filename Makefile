@@ -62,7 +62,7 @@ bench: build
 	@mkdir -p out
 	@build/bin/brdfcl-bench --benchmark_out=out/bench.json --benchmark_out_format=json
 
-# Mitsuba 3 as a peer (bench/README.md): a venv in build/venv-peers with mitsuba from PyPI and
+# Mitsuba 3 as a peer (docs/performance.md): a venv in build/venv-peers with mitsuba from PyPI and
 # Debian's libllvm19; needs the network the first time. Not part of `make test`.
 bench-peers: configure
 	@cmake --build --preset $(PRESET) -j $(JOBS) --target brdfcl

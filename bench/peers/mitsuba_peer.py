@@ -59,7 +59,7 @@ def mitsuba_bsdf(mi, lobe, m):
             "eta": {"type": "rgb", "value": [1.0, 1.0, 1.0]},
             "k": {"type": "rgb", "value": k},
         })
-    # Disney's parameters, not glTF's: the closest knobs (see bench/README.md for what differs).
+    # Disney's parameters, not glTF's: the closest knobs (see docs/performance.md for what differs).
     return mi.load_dict({
         "type": "principled",
         "base_color": {"type": "rgb", "value": m["base_color"]},

@@ -107,7 +107,7 @@ void addEvalCommand(CLI::App& app) {
   cmd->add_option("--samples", args->samples, "CSV with columns material,Lx,Ly,Lz,Vx,Vy,Vz in any order, or .npy (N,7); - reads stdin (CSV, or NPY by its magic)")->required();
   cmd->add_option("--out", args->out, "output CSV r,g,b or .npy (N,3) float32; - writes CSV to stdout")->required();
   addModelOptions(cmd, args->model);
-  cmd->add_option("--lobe", args->lobe, "all|diffuse|specular|sheen|clearcoat (default all; every profile defines its lobes, README)");
+  cmd->add_option("--lobe", args->lobe, "all|diffuse|specular|sheen|clearcoat (default all; every profile defines its lobes, docs/model.md)");
   cmd->add_flag("--grid", args->grid, "every material x every direction pair, material-major");
   cmd->add_flag("--strict", args->strict,
                 "unknown keys and extensions in the materials file are errors, not warnings");

@@ -169,7 +169,7 @@ struct LightingArgs {
   bool environmentGiven = false;
 
   void add(CLI::App* cmd) {
-    cmd->add_option("--environment", environment, "builtin|sky|studio|uniform|FILE.hdr|FILE.exr (default builtin: the sky)");
+    cmd->add_option("--environment", environment, "builtin|sky|studio|uniform|FILE.hdr|FILE.exr (default: the sky with --gltf, studio for the spheres; builtin is the sky)");
     cmd->add_option("--env-intensity", envIntensity, "environment radiance scale (default 1)");
     cmd->add_option("--env-rotation", envRotation, "environment rotation about +Y in radians (default 0)");
     cmd->add_option("--lights", lights, "gltf (the scene's own lights: a file's KHR lights, else a default key light; the spheres' key and fill), none, or SCENE.json");

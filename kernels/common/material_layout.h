@@ -40,7 +40,7 @@ typedef struct brdfcl_material {
   float reserved[3];     /* pads the record to 96 bytes */
 } brdfcl_material;
 
-/* Clamps, documented in README.md ("Clamps"). Both sit below the alphas of roughness 0.05
+/* Clamps, documented in docs/model.md ("Clamps"). Both sit below the alphas of roughness 0.05
    (0.0025), so they never change a result in the range the specs are tested on. */
 #define BRDFCL_MIN_ALPHA 1.0e-3f        /* GGX: alpha = 0 is a delta; keeps D finite in float */
 #define BRDFCL_MIN_SHEEN_ALPHA 1.0e-3f  /* Charlie: exponent 1/alpha; Ashikhmin: cot^2/alpha^2 */

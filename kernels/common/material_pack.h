@@ -1,6 +1,6 @@
 /* glTF material parameters -> brdfcl_material, written once for both sides: the host packs
    batch materials with it (host/src/model/pack.cpp) and the shading kernel packs each G-buffer
-   pixel with it. Alphas are squared and clamped here; see README.md "Clamps". */
+   pixel with it. Alphas are squared and clamped here; see docs/model.md "Clamps". */
 #ifndef BRDFCL_MATERIAL_PACK_H
 #define BRDFCL_MATERIAL_PACK_H
 

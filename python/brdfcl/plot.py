@@ -370,7 +370,7 @@ def sheen_e(*, size: int = 64, sheen_visibility: Optional[str] = None, sheen_dis
     """The sheen E table (brdfcl.lut("sheen-e")): E(N·V, sheen roughness), the white sheen lobe's
     directional albedo, as a heat map (colours capped at E = 2) with its E = 1 contour (where it
     reaches 1; the title says when it does not). Texel (i, j) is at N·V = max(i / (size - 1), 1e-4), roughness
-    j / (size - 1), as the README's "Look-up tables" says.
+    j / (size - 1), as docs/cli.md's "Look-up tables" says.
 
     arrays: cos_theta_v (size,), roughness (size,), E float32 (size, size) (brdfcl.lut's result,
     [roughness index, N·V index]).

@@ -102,7 +102,7 @@ def test_throughput_vs_bench(measured, cli):
     0.96 on the idle machine, 0.90 to 0.93 with a build beside it. Python's call reads L and V and writes the result
     where they lie (the row kernel, no copy); the device then does what the bench's planes had
     done before its clock started: it deinterleaves the rows, normalizes both directions and
-    checks them (BM_InMemory/all/{kernel,arrays} in bench/README.md: 0.95 on one material). The
+    checks them (BM_InMemory/all/{kernel,arrays} in docs/performance.md: 0.95 on one material). The
     bound lies inside the run-to-run scatter of a shared machine, so it is asserted with
     BRDFCL_STRICT_PERF=1; otherwise the ratio must reach 0.5, a guard against the copies of before
     coming back."""

@@ -1,4 +1,4 @@
-// Where the real glTF sample assets are (/work/shared/assets style, see its README): $BRDFCL_ASSETS,
+// Where the real glTF sample assets (the Khronos glTF sample models) are: $BRDFCL_ASSETS,
 // else <source dir>/../shared/assets. Tests that need them skip, naming BRDFCL_ASSETS, when absent.
 #pragma once
 #include <gtest/gtest.h>

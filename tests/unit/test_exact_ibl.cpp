@@ -160,7 +160,7 @@ TEST(ExactIbl, WhiteFurnaceGivesTheReferenceAlbedoForEveryLayer) {
 }
 
 // The same furnace through the split sum, luminance error per material and N.V against the same
-// reference (the README's table): within 1 % for every material without sheen, anisotropy
+// reference (the table of docs/shading.md): within 1 % for every material without sheen, anisotropy
 // included (its own table); sheen differs by design (view-only E scaling), within 12 %.
 TEST(ExactIbl, SplitSumFurnaceStaysWithinItsDocumentedBounds) {
   const auto ms = furnaceMaterials();
@@ -217,7 +217,7 @@ TEST(ExactIbl, OutputIsBitIdenticalAcrossRunsAndChunkings) {
 
 // Under the built-in sky (gradient, ground, a small bright sun), rough dielectrics without
 // extensions: the split sum's prefiltered approximations against the exact integral. The bound is
-// README.md's ("Rendering G-buffers": exact vs split sum).
+// docs/shading.md's ("Exact image-based light": against the split sum).
 TEST(ExactIbl, AgreesWithTheSplitSumOnRoughDielectricsUnderTheSky) {
   std::vector<MaterialParams> ms;
   for (float r : {0.6f, 0.8f, 1.0f})

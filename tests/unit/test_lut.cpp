@@ -196,7 +196,7 @@ TEST(Lut, BakeQuadratureHasConverged) {
   }
 }
 
-// README's LUT section says so: charlie-dfg is sheen-e at its defaults, and only the Ashikhmin
+// docs/cli.md ("Look-up tables") says so: charlie-dfg is sheen-e at its defaults, and only the Ashikhmin
 // options make sheen-e another table.
 TEST(Lut, CharlieDfgIsSheenEAtItsDefaults) {
   const Lut charlie = bakeLut(runtime(), LutKind::CharlieDfg, 16);

@@ -29,7 +29,7 @@ float maxAbsRelDiff(const std::vector<float>& a, const std::vector<float>& b, st
 
 // White furnace: a white material under uniform light reflects at most what it receives, where
 // the specs' model conserves energy. Two places where it does not, both confirmed by the
-// reference's own integral, are documented in README.md and tested below: the sheen albedo
+// reference's own integral, are documented in docs/model.md ("Where the specs' model gains energy") and tested below: the sheen albedo
 // E > 1 at grazing, low sheen roughness (SheenAlbedo.ExceedsOneOnlyWhereDocumented), and the
 // Appendix B dielectric, whose per-direction mix(diffuse, specular, F(V.H)) gains energy below
 // N.V ~ 0.75 (Furnace.AppendixBDielectricGainsEnergyAtGrazing).
@@ -225,7 +225,7 @@ TEST(ClosedForm, ZeroSheenAndClearcoatEqualTheCore) {
 
 // Where the sheen albedo E exceeds 1 (energy gain, and albedo scaling s < 0), per D x V, over
 // mu in [0.01, 1] and r in [0.05, 1]. Measured with the baked table, checked against the
-// region README.md documents: the Charlie D variants gain energy at grazing, low-roughness
+// region docs/model.md documents: the Charlie D variants gain energy at grazing, low-roughness
 // corners; the Ashikhmin D variants never do.
 struct Excess {
   SheenDistribution d;

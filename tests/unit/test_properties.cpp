@@ -268,11 +268,11 @@ std::vector<MaterialParams> featureCarriers() {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Where f may be negative: README "Where the specs' model gains energy". The albedo scaling
+// Where f may be negative: docs/model.md "Where the specs' model gains energy". The albedo scaling
 // s = 1 - max3(sheenColor) E(mu, sheenRoughness) multiplies the diffuse and specular lobes, and it
 // is negative only where the baked E exceeds 1. These boxes bound that region over the whole
 // domain mu, r in [0, 1], the table's bilinear interpolation included
-// (SheenAlbedoBox.ExceedsOneOnlyInsideTheBox checks every cell of the table); the README's table
+// (SheenAlbedoBox.ExceedsOneOnlyInsideTheBox checks every cell of the table); docs/model.md's table
 // gives the same region on mu >= 0.01, r >= 0.05.
 struct ExcessBox {
   float rMax, muMax;  // E > 1 only where r <= rMax and mu <= muMax; negative: nowhere
@@ -285,7 +285,7 @@ ExcessBox excessBox(SheenDistribution d, SheenVisibility v) {
 
 float max3(const Rgb& c) { return std::max({c[0], c[1], c[2]}); }
 
-// The cosines the kernels use for look-ups and visibility (README "Clamps": BRDFCL_MIN_COS).
+// The cosines the kernels use for look-ups and visibility (docs/model.md "Clamps": BRDFCL_MIN_COS).
 float floored(float cosine) { return std::max(cosine, 1e-4f); }
 
 // True where the documented exception applies to this sample: a ratified sheen whose scaling

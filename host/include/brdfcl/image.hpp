@@ -54,7 +54,7 @@ std::vector<float> readEnvironmentRgb(const std::string& path, int& width, int& 
 // RGB jointly: the offset uses min(r,g,b), the compression max(r,g,b). Output is in [0, 1]
 // (below 1 for any input under ~1e6).
 // Negative and NaN components are taken as 0 first (the reference is undefined there; negative
-// f can occur, see README), +inf as the largest float.
+// f can occur, see docs/model.md), +inf as the largest float.
 Rgb toneMapPbrNeutral(const Rgb& linear);
 // Grey convenience: toneMapPbrNeutral({g, g, g})[0].
 float toneMapPbrNeutral(float grey);

@@ -80,7 +80,7 @@ class Runtime {
 
 // How the batch kernels (eval.cl) lay work on a device: samples per work-item (BRDFCL_W) and
 // work-items per work-group. CPUs: 16 lanes a work-item, 512 a group (the compiler does not
-// vectorize across work-items through pow/exp, so the lanes are the vectors; bench/README.md).
+// vectorize across work-items through pow/exp, so the lanes are the vectors; docs/performance.md).
 // GPUs and everything else: 1 lane, 128 work-items (a GPU's SIMD runs across work-items).
 // $BRDFCL_LANES = 1, 4, 8 or 16 forces the lane width on any device, for tests and tuning;
 // another value throws "BRDFCL_LANES=<v> is not supported; use 1, 4, 8 or 16".

@@ -38,7 +38,7 @@ using detail::printable;
 // A `direct` file (an NPY result going to a regular file) writes its whole blocks with O_DIRECT
 // from a page-aligned buffer, where the filesystem allows it: the result then goes from our one
 // reused buffer to the disk, without a copy into fresh page-cache pages. Those pages are what
-// made NPY output slow (bench/README.md, "The library and files at kernel speed"): writing into
+// made NPY output slow (docs/performance.md, "The library and files at kernel speed"): writing into
 // them costs a copy and, on a VM that hands freed memory back to its host, a fault per page. The
 // tail and the header patch go through the page cache; other filesystems (tmpfs, NFS) get
 // buffered writes throughout.

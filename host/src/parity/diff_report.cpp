@@ -1,5 +1,5 @@
 // What `brdfcl diff` prints: the statistics as aligned text lines, or as one JSON object whose
-// keys scripts can rely on (the README lists them).
+// keys scripts can rely on (docs/cli.md lists them).
 #include <string>
 
 #include <fmt/format.h>

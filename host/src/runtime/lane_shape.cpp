@@ -12,7 +12,7 @@
 namespace brdfcl {
 
 namespace {
-// Measured on PoCL's pthread device (bench/README.md, "Work-group size") against its own
+// Measured on PoCL's pthread device (docs/performance.md, "Work-group size") against its own
 // choice: +20 % on sheen, +30 % on the layered material.
 constexpr std::size_t kCpuGroup = 512;
 // GPUs want 64-256 work-items a group; 128 keeps two or more groups per compute unit resident.

@@ -54,7 +54,7 @@ constexpr const char* kNoPlatform = "no OpenCL platform found; install pocl-open
 
 // PoCL's CPU device runs one worker thread a core, unpinned by default. Linux then now and then
 // leaves two of them on one core for a whole launch, which runs at half speed: launches of the
-// same kernel took either t or 2t (bench/README.md, "Run-to-run spread"). Pinned, they do not.
+// same kernel took either t or 2t (docs/performance.md, "Run-to-run spread"). Pinned, they do not.
 // Set before PoCL reads its environment (the first OpenCL call), and never over the user's value.
 // PoCL's kernel cache folder is checked then too (runtime/pocl_cache_dir.hpp).
 void pinPoclWorkers() {
