@@ -63,6 +63,19 @@ __kernel void env_prefilter(__global const float* restrict chain, int w0, int h0
   float3 n = texel_direction(x, y, w, h), t, b;
   basis(n, &t, &b);
   float alpha = max(roughness * roughness, BRDFCL_MIN_ALPHA);
+  float sa = max(roughness * roughness, BRDFCL_MIN_SHEEN_ALPHA);
+  /* Charlie's weights relative to the largest among the samples: D's factor and its peak cancel in
+     the normalization, and at small alpha D itself (sin^(1/alpha), sin <= 1/sqrt(2) above the
+     horizon) underflows to 0 for every sample, which would leave the level black. */
+  float max_log_sin2 = -INFINITY;
+  if (kind == 1)
+    for (uint i = 0; i < count; ++i) {
+      float2 xi = hammersley(i, count);
+      float r = sqrt(xi.x), ph = 2.0f * M_PI_F * xi.y, z = sqrt(max(0.0f, 1.0f - xi.x));
+      float3 hv = normalize(r * cos(ph) * t + r * sin(ph) * b + z * n + n);
+      float hn = dot(hv, n), hxy2 = max(1.0f - hn * hn, 0.0f);
+      max_log_sin2 = max(max_log_sin2, -log1p(hn * hn / hxy2));
+    }
   float3 acc = (float3)(0.0f);
   float weight = 0.0f;
   for (uint i = 0; i < count; ++i) {
@@ -90,8 +103,8 @@ __kernel void env_prefilter(__global const float* restrict chain, int w0, int h0
       if (kind == 1) {
         float3 hv = normalize(l + n);
         float hn = dot(hv, n), hxy2 = max(1.0f - hn * hn, 0.0f);
-        float sa = max(roughness * roughness, BRDFCL_MIN_SHEEN_ALPHA);
-        wgt = D_Charlie(hxy2, hn * hn, sa); /* N.L / pdf = pi for every sample: D alone weighs */
+        /* N.L / pdf = pi for every sample: D alone weighs, here D / D(largest sample) */
+        wgt = exp(0.5f / sa * (-log1p(hn * hn / hxy2) - max_log_sin2));
       } else {
         wgt = 1.0f;
       }

@@ -65,7 +65,7 @@
 typedef struct {
   BRDFCL_MATERIAL_LANES(BRDFCL_DECLARE_LANE)
   realw draft;     /* 1 for the experimental draft's sheen, else 0 */
-  realw aniso_ext; /* 1 where BRDFCL_MAT_ANISOTROPY is set (khronos), else 0 */
+  realw aniso_ext; /* 1 where BRDFCL_MAT_ANISOTROPY is set (khronos, filament), else 0 */
 } material_lanes;
 
 /* All lanes share one material (grid evaluation, shading): splat. OpenCL C 1.2 has no generic

@@ -14,7 +14,7 @@ typedef std::uint32_t brdfcl_u32;
 /* Material flags. */
 #define BRDFCL_MAT_SHEEN 1u       /* a sheen lobe is present (max3(sheenColor) > 0) */
 #define BRDFCL_MAT_DRAFT_SHEEN 2u /* the experimental draft's additive (1 - reflectance) blend */
-#define BRDFCL_MAT_ANISOTROPY 4u  /* khronos only: KHR_materials_anisotropy is present, whatever its strength */
+#define BRDFCL_MAT_ANISOTROPY 4u  /* khronos, filament: KHR_materials_anisotropy is present, whatever its strength */
 
 /* A glTF material decoded once on the host: alphas squared and clamped, the anisotropic
    tangent rotation as cos/sin, sheen weights folded in. 24 floats = 96 bytes. */

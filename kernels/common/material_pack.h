@@ -116,6 +116,7 @@ BRDFCL_PACK_FN brdfcl_material brdfcl_pack_material_profile(brdfcl_material_para
     p.clearcoat_alpha = rhoc * rhoc;
     p.ior_f0 = f0_ior < 1.0f ? f0_ior : 1.0f;
   } else if (profile == BRDFCL_PROFILE_FILAMENT) {
+    if (m.anisotropy) p.flags |= BRDFCL_MAT_ANISOTROPY; /* gltfio's MATERIAL_HAS_ANISOTROPY */
     const float rho = brdfcl_clampf(brdfcl_mixf(r, BRDFCL_MAXF(r, rc), m.clearcoat), 0.045f, 1.0f), a = rho * rho;
     p.roughness = rho;
     p.alpha_t = BRDFCL_MAXF(a * (1.0f + s), 0.002025f); /* Kulla 2017, A = strength */

@@ -4,6 +4,8 @@
 #pragma once
 #include <cstdio>
 #include <cstdlib>
+#include <map>
+#include <tuple>
 #include <vector>
 
 namespace ec {
@@ -39,8 +41,39 @@ inline real pair_lookup(real u, real v, bool neubelt) {
   return view ? p.e_cc_v : p.e_cc_l;
 }
 
+// Table reads answered at the coordinates the engine asks: a first run with EC_LOOKUPS_OUT set
+// writes every (table, u, v) it reads and gets 0.5 back; the harness then reads brdfcl's value
+// at each, and a second run with EC_LOOKUPS set to those answers gets them (NaN where the engine
+// asks at a coordinate the first run did not: its control flow then depended on a table value).
+enum Table { E_CC = 0, E_CN = 1 };
+inline FILE* g_lookups_out = nullptr;
+inline std::map<std::tuple<int, double, double>, double> g_lookups;
+inline real table_lookup(int table, real u, real v) {
+  if (g_lookups_out) {
+    std::fprintf(g_lookups_out, "%d %a %a\n", table, double(u), double(v));
+    return real(0.5);
+  }
+  auto it = g_lookups.find(std::make_tuple(table, double(u), double(v)));
+  return it == g_lookups.end() ? real(NAN) : real(it->second);
+}
+
+inline void open_lookups() {
+  if (const char* out = std::getenv("EC_LOOKUPS_OUT")) {
+    g_lookups_out = std::fopen(out, "w");
+    if (!g_lookups_out) { std::perror(out); std::exit(2); }
+  } else if (const char* in = std::getenv("EC_LOOKUPS")) {
+    FILE* f = std::fopen(in, "r");
+    if (!f) { std::perror(in); std::exit(2); }
+    int t;
+    double u, v, e;
+    while (std::fscanf(f, "%d %la %la %la", &t, &u, &v, &e) == 4) g_lookups[std::make_tuple(t, u, v)] = e;
+    std::fclose(f);
+  }
+}
+
 inline int run(RunFn const* variants, int argc, char** argv) {
   if (argc != 3) { std::fprintf(stderr, "usage: %s MATERIALS PAIRS\n", argv[0]); return 2; }
+  open_lookups();
   std::vector<Material> mats;
   FILE* f = std::fopen(argv[1], "r");
   if (!f) { std::perror(argv[1]); return 2; }
@@ -72,6 +105,7 @@ inline int run(RunFn const* variants, int argc, char** argv) {
     std::printf("\n");
   }
   std::fclose(f);
+  if (g_lookups_out) std::fclose(g_lookups_out);
   return 0;
 }
 }  // namespace ec

@@ -65,6 +65,23 @@ inline vec4 texture(const sampler2D& s, vec2 uv) {
 }
 inline vec4 textureLod(const sampler2D& s, vec2 uv, real) { return texture(s, uv); }
 
+// A swizzle written to (`c.rgb *= k`, `v.xy = w`): GLM's swizzle calls return copies, so the
+// converter spells these ec::swz<N>(c, i...) OP rhs, which writes the named components.
+namespace ec {
+template <int N, class V>
+struct Swz {
+  V& v;
+  int i[N];
+  using T = glm::vec<N, real, glm::defaultp>;
+  template <class R> Swz& operator=(const R& r) { T t(r); for (int k = 0; k < N; ++k) v[i[k]] = t[k]; return *this; }
+  template <class R> Swz& operator+=(const R& r) { T t(r); for (int k = 0; k < N; ++k) v[i[k]] += t[k]; return *this; }
+  template <class R> Swz& operator-=(const R& r) { T t(r); for (int k = 0; k < N; ++k) v[i[k]] -= t[k]; return *this; }
+  template <class R> Swz& operator*=(const R& r) { T t(r); for (int k = 0; k < N; ++k) v[i[k]] *= t[k]; return *this; }
+  template <class R> Swz& operator/=(const R& r) { T t(r); for (int k = 0; k < N; ++k) v[i[k]] /= t[k]; return *this; }
+};
+template <int N, class V, class... I> inline Swz<N, V> swz(V& v, I... idx) { return Swz<N, V>{v, {int(idx)...}}; }
+}  // namespace ec
+
 // Screen-space derivatives of a flat, front-facing quad whose UVs follow +X and +Y: the engine's
 // own tangent-frame code then builds N = +Z, T = +X, B = +Y.
 inline vec2 dFdx(vec2) { return vec2(1, 0); }

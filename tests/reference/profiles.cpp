@@ -384,8 +384,9 @@ Lobes filament(const Mat& q, const Geometry& g) {
   const double f90 = std::clamp(16.5 * (f0[0] + f0[1] + f0[2]), 0.0, 1.0);
 
   double DV;
-  if (q.aniso) {
-    // Kulla's parametrisation with A = s (brdfcl's mapping of glTF strength).
+  if (q.anisoExt) {
+    // Kulla's parametrisation with A = s (brdfcl's mapping of glTF strength), on the extension's
+    // presence (gltfio's MATERIAL_HAS_ANISOTROPY), strength 0 included: no cap on D.
     const double at = std::max(alpha * (1.0 + q.s), 0.002025);
     const double ab = std::max(alpha * (1.0 - q.s), 0.002025);
     DV = D_Burley(at, ab, dot3(g.H, g.T), dot3(g.H, g.B), g.NdotH) *

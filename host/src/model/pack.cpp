@@ -147,8 +147,9 @@ FeatureSet featuresOf(const std::vector<MaterialParams>& materials, Profile prof
     f.draft |= sheen && m.draftSheen;
     f.ratifiedSheen |= sheen && !m.draftSheen;
     f.clearcoat |= m.clearcoat > 0.0f;
-    // khronos takes its anisotropic path whenever the extension is present.
-    f.anisotropy |= m.anisotropyStrength > 0.0f || (profile == Profile::Khronos && m.anisotropyExtension);
+    // khronos and filament take their anisotropic paths whenever the extension is present.
+    f.anisotropy |= m.anisotropyStrength > 0.0f ||
+                    ((profile == Profile::Khronos || profile == Profile::Filament) && m.anisotropyExtension);
   }
   return f;
 }

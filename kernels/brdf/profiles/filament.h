@@ -1,8 +1,9 @@
 /* --profile filament: Filament's standard model, desktop quality (surface_brdf.fs@04d50d42,
    surface_shading_model_standard.fs@1b47d187), docs/profiles.md "filament": base roughness raised
    by the coat, f90 from f0, Lambert without Fresnel, energy compensation, view-only sheen scaling,
-   Kelemen coat with F on L.H, Kulla anisotropy. The isotropic D caps k at 453.5 (so D at
-   453.5^2/pi); V, Kelemen and the anisotropic D have no cap on desktop (PREVENT_DIV0 is n / d). */
+   Kelemen coat with F on L.H, Kulla anisotropy wherever the extension is present. The isotropic D
+   caps k at 453.5 (so D at 453.5^2/pi); V, Kelemen and the anisotropic D have no cap on desktop
+   (PREVENT_DIV0 is n / d). */
 #ifndef BRDFCL_PROFILE_FILAMENT_H
 #define BRDFCL_PROFILE_FILAMENT_H
 
@@ -18,11 +19,12 @@ BRDF_FN rgbw brdf_profile(const material_lanes m, vec3w L, vec3w V, vec3w Lc, ve
                           __global const float* tables, int e_size) {
   __global const float* dfg = tables + e_size * e_size;
   engine_geometry g = engine_geometry_of(L, V, 0.0f, 1e-4f); /* saturate(N.L), clampNoV */
-#if BRDFCL_HAS_ANISOTROPY
-  /* alpha_t = alpha (1 + A), alpha = alpha (1 - A): equal at A = 0, the isotropic lobe. */
-  realw S = D_BurleyRotated(m, g, g.hz) * 0.5f / Lambda_HeitzRotated(m, g, L, V);
-#else
   realw S = D_GGX_Filament(g.sin2, g.cos2, m.alpha) * 0.5f / Lambda_SmithSum(g.NdotL, g.NdotV, m.alpha);
+#if BRDFCL_HAS_ANISOTROPY
+  /* MATERIAL_HAS_ANISOTROPY, which gltfio defines when the extension is present (strength 0
+     included): alpha_t = alpha (1 + A), alpha = alpha (1 - A), Burley's D without the cap. A
+     material without the extension keeps the capped isotropic D in any batch. */
+  S = select(S, D_BurleyRotated(m, g, g.hz) * 0.5f / Lambda_HeitzRotated(m, g, L, V), m.aniso_ext > 0.0f);
 #endif
   rgbw f0 = f0_metallic(m);
   realw f90 = clamp(16.5f * (f0.r + f0.g + f0.b), 0.0f, 1.0f);

@@ -83,7 +83,8 @@ static inline float3 F_ibl_khronos(float3 F0, float r, float nv, float2 ab) {
 
 static inline float3 profile_ibl(const profile_ibl_env* e, const profile_ibl_frame* f, brdfcl_material_params q,
                                  const brdfcl_material* p, float* emission_weight) {
-  float nv = max(dot(f->N, f->V), 1e-4f), r = clamp(q.roughness, 0.0f, 1.0f);
+  /* clampedDot: N.V and the coat's N.V clamped to [0, 1], no floor */
+  float nv = clamp(dot(f->N, f->V), 0.0f, 1.0f), r = clamp(q.roughness, 0.0f, 1.0f);
   float3 base = (float3)(q.base_color[0], q.base_color[1], q.base_color[2]);
   float3 n = f->N;
   if (q.anisotropy_strength > 0.0f) {
@@ -97,11 +98,11 @@ static inline float3 profile_ibl(const profile_ibl_env* e, const profile_ibl_fra
   float3 col = mix(mix(ibl_irradiance(e, f->N) * base, Ls, Fd), metal, q.metallic);
   float sheen_max = brdfcl_max3(q.sheen_color);
   if (sheen_max > 0.0f) {
-    float E = ibl_sheen_e(e, nv, q.sheen_roughness);
+    float E = ibl_sheen_e(e, max(nv, 1e-4f), q.sheen_roughness); /* the E table's floor (docs/profiles.md "Tables") */
     float3 c = (float3)(q.sheen_color[0], q.sheen_color[1], q.sheen_color[2]);
     col = ibl_charlie_radiance(e, reflect_v(f->V, f->N), q.sheen_roughness) * c * E + col * (1.0f - sheen_max * E);
   }
-  float ncv = max(dot(f->Nc, f->V), 1e-4f);
+  float ncv = clamp(dot(f->Nc, f->V), 0.0f, 1.0f);
   float coat = q.clearcoat * (p->ior_f0 + (1.0f - p->ior_f0) * s5f(ncv));
   col = mix(col, ibl_radiance(e, reflect_v(f->V, f->Nc), q.clearcoat_roughness), coat);
   *emission_weight = 1.0f - coat;
