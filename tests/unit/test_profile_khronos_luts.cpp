@@ -6,6 +6,8 @@
 #include <cmath>
 
 #include "brdfcl/io.hpp"
+#include "brdfcl/render.hpp"
+#include "brdfcl/scene.hpp"
 #include "kernels/common/material_layout.h"
 #include "parity/engine_tables.hpp"
 #include "reference/profiles.hpp"
@@ -91,4 +93,33 @@ TEST(KhronosSheenLut, DirectSheenScalingIsBilinearBetweenTexels) {
   const auto& t = khronosSheenETable();
   const double e = 0.5 * (double(t[300u * kN + 100u]) + double(t[300u * kN + 101u]));
   EXPECT_NEAR(diffuseScaling(101.0 / kN, float(centre(300))), 1.0 - e, 2e-5);
+}
+
+// Image-based light: the renderer scales the base by 1 - max3(c) E(N.V, r_s) from the same
+// texture (pbr.frag's albedoSheenScaling) and adds the Charlie radiance times c. With
+// c = (1, 0, 0) the green channel carries the scaling alone: green(sheen) / green(no sheen) is
+// 1 - E at N.V = 0.098, r_s = 0.293 (texel (100, 300) = 198/255), under a uniform sky and no lights.
+TEST(KhronosSheenLut, ImageBasedSheenScalingIsTheRenderersTexel) {
+  const double mu = centre(100);
+  GBuffer g;
+  g.width = 2;
+  g.height = 1;
+  g.P = std::vector<float>(6, 0.0f);
+  g.N = {0.0f, 0.0f, 1.0f, 0.0f, 0.0f, 1.0f};
+  const float vx = float(std::sqrt(1.0 - mu * mu)), vz = float(mu);
+  g.V = {vx, 0.0f, vz, vx, 0.0f, vz};
+  g.baseColor = std::vector<float>(6, 1.0f);
+  g.metallic = {0.0f, 0.0f};
+  g.roughness = {0.5f, 0.5f};
+  g.mask = {1.0f, 1.0f};
+  g.sheenColor = {0.0f, 0.0f, 0.0f, 1.0f, 0.0f, 0.0f};
+  g.sheenRoughness = {0.0f, float(centre(300))};
+  Scene scene;
+  scene.environment.builtinKind = "uniform";
+  EvalOptions o;
+  o.profile = Profile::Khronos;
+  const Image img = Shader(runtime(), scene, o).shade(g);
+  const double plain = img.rgb[1], sheen = img.rgb[4];
+  ASSERT_GT(plain, 1e-3) << "the uniform sky lights the base";
+  EXPECT_NEAR(sheen / plain, 1.0 - 198 / 255.0, 1e-4);
 }
