@@ -3,6 +3,7 @@
 # host/src/parity/khronos_sheen_e_lut.inc as the 8-bit texels a WebGL upload of it holds
 # (docs/profiles.md "Tables"); scripts/engine-check reads the same PNG through read_texels().
 import argparse
+import hashlib
 import os
 import struct
 import sys
@@ -85,16 +86,19 @@ def read_texels(path):
 def main():
     ap = argparse.ArgumentParser(description=__doc__)
     ap.add_argument("renderer", help="a glTF-Sample-Renderer checkout (holds %s)" % PNG_PATH)
-    ap.add_argument("--commit", default="", help="the checkout's commit, written into the table's header")
     args = ap.parse_args()
-    w, h, texels = read_texels(os.path.join(args.renderer, PNG_PATH))
+    path = os.path.join(args.renderer, PNG_PATH)
+    w, h, texels = read_texels(path)
+    with open(path, "rb") as f:
+        data = f.read()
+    blob = hashlib.sha1(b"blob %d\0" % len(data) + data).hexdigest()
     if (w, h) != (SIZE, SIZE):
         sys.exit("khronos_luts: %s is %dx%d, brdfcl's layout expects %dx%d" % (PNG_PATH, w, h, SIZE, SIZE))
     packed = zlib.compress(texels, 9)
     lines = ["// glTF Sample Renderer's sheen albedo table, carried over as data: KhronosGroup/glTF-Sample-Renderer",
-             "// %s%s (1024x1024, 16-bit RGB), red channel as the 8-bit texels of its WebGL upload" %
-             (PNG_PATH, "@" + args.commit if args.commit else ""),
-             "// (high byte), row j = sheen roughness, column i = N.V; zlib-compressed. Written by scripts/khronos_luts.py."]
+             "// %s (git blob %s, 1024x1024, 16-bit RGB), red channel as the 8-bit texels of" % (PNG_PATH, blob[:12]),
+             "// its WebGL upload (high byte), row j = sheen roughness, column i = N.V; zlib-compressed.",
+             "// Written by scripts/khronos_luts.py; data only."]
     for i in range(0, len(packed), 24):
         lines.append("    " + ", ".join(str(b) for b in packed[i:i + 24]) + ",")
     with open(OUT + ".tmp", "w") as f:
