@@ -68,5 +68,8 @@ typedef struct brdfcl_material {
 /* Engine profiles read, after the sheen E table (size^2 floats), three.js's 16x16 DFG table:
    (A, B) per texel, row-major, rows = N.V, columns = roughness (docs/profiles.md). */
 #define BRDFCL_DFG_SIZE 16
+/* --profile khronos reads, after the DFG table, the Sample Renderer's lut_sheen_E.png: size^2
+   floats (unorm8 / 255), rows = sheen roughness, columns = N.V (docs/profiles.md "Tables"). */
+#define BRDFCL_KHRONOS_SHEEN_E_SIZE 1024
 
 #endif

@@ -1,10 +1,15 @@
 // Independent double-precision reference of the engine parity profiles (see profiles.hpp):
 // khronos, threejs, filament, babylon and materialx as docs/profiles.md writes them, line by
-// line, with their tables (three.js DFG data, MaterialX fits) and the lobe split.
+// line, with their tables (three.js DFG data, the Sample Renderer's sheen albedo texels,
+// MaterialX fits) and the lobe split.
 #include "reference/profiles.hpp"
+
+#include <zlib.h>
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <vector>
 
 namespace ref {
 
@@ -67,6 +72,47 @@ std::array<double, 2> threejsDfg(double roughness, double NdotV) {
     out[ch] = bottom * (1.0 - wv) + top * wv;
   }
   return out;
+}
+
+namespace {
+// The data only: lut_sheen_E.png's red channel as 8-bit texels, zlib-compressed, rows = sheen
+// roughness, columns = N.V (docs/profiles.md "Tables").
+constexpr unsigned char kKhronosSheenE[] = {
+#include "../../host/src/parity/khronos_sheen_e_lut.inc"
+};
+constexpr int kKhronosN = 1024;
+
+const std::vector<unsigned char>& khronosTexels() {
+  static const std::vector<unsigned char> t = [] {
+    std::vector<unsigned char> v(std::size_t(kKhronosN) * kKhronosN);
+    uLongf n = uLongf(v.size());
+    if (uncompress(v.data(), &n, kKhronosSheenE, uLong(sizeof kKhronosSheenE)) != Z_OK || n != v.size())
+      throw std::logic_error("khronos_sheen_e_lut.inc does not inflate to 1024x1024 texels");
+    return v;
+  }();
+  return t;
+}
+}  // namespace
+
+double khronosSheenE(double NdotV, double sheenRoughness) {
+  // texture(u_SheenELUT, vec2(N.V, r_s)).r with LINEAR and CLAMP_TO_EDGE: texel centres at
+  // (i + 0.5)/1024, neighbours clamped to the edge; each texel unorm8 / 255.
+  auto split = [](double u, int& i0, int& i1, double& w) {
+    const double x = u * kKhronosN - 0.5;
+    const double fl = std::floor(x);
+    w = x - fl;
+    i0 = std::clamp(static_cast<int>(fl), 0, kKhronosN - 1);
+    i1 = std::clamp(static_cast<int>(fl) + 1, 0, kKhronosN - 1);
+  };
+  int i0, i1, j0, j1;
+  double wu, wv;
+  split(NdotV, i0, i1, wu);
+  split(sheenRoughness, j0, j1, wv);
+  const auto& t = khronosTexels();
+  auto texel = [&](int i, int j) { return t[std::size_t(j) * kKhronosN + std::size_t(i)] / 255.0; };
+  const double bottom = texel(i0, j0) * (1.0 - wu) + texel(i1, j0) * wu;
+  const double top = texel(i0, j1) * (1.0 - wu) + texel(i1, j1) * wu;
+  return bottom * (1.0 - wv) + top * wv;
 }
 
 double threejsDfgEss(double roughness, double NdotV) {
@@ -291,8 +337,9 @@ Lobes khronos(const Mat& q, const Geometry& g) {
     const float sin2F = 1.0f - nhF * nhF;
     sheenDV = D_CharlieS(alphaS, sin2F) *
               std::min(V_Charlie(g.NdotL, g.NdotV, alphaS), 1.0);
-    // E takes the raw sheen roughness (the D's floor does not reach the table).
-    sh = std::min(1.0 - q.maxC * E_CC(g.NdotV, q.rs), 1.0 - q.maxC * E_CC(g.NdotL, q.rs));
+    // albedoSheenScalingLUT: the renderer's own texture at the raw sheen roughness (the D's
+    // floor does not reach it) and the clamped cosines.
+    sh = std::min(1.0 - q.maxC * khronosSheenE(g.NdotV, q.rs), 1.0 - q.maxC * khronosSheenE(g.NdotL, q.rs));
   }
 
   double k = 1.0, coat = 0.0;

@@ -48,6 +48,10 @@ std::array<double, 2> threejsDfg(double roughness, double NdotV);
 // E_ss = A + B: GGX single-scattering directional albedo with F = 1.
 double threejsDfgEss(double roughness, double NdotV);
 
+// The glTF Sample Renderer's lut_sheen_E.png (8-bit texels, 1024x1024) sampled as a GPU does:
+// bilinear in (u = NdotV, v = sheen roughness), texel centres at (i + 0.5)/1024, clamp to edge.
+double khronosSheenE(double NdotV, double sheenRoughness);
+
 // MaterialX's mx_ggx_dir_albedo_analytic rational fit: (A, B) at (mu = NdotV, alpha), each
 // clamped to [0, 1]. E_ggx(F0, F90) = F0 A + F90 B.
 std::array<double, 2> mxGgxAlbedoFit(double mu, double alpha);

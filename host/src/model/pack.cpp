@@ -119,9 +119,9 @@ void checkProfileOptions(const EvalOptions& o) {
 bool FeatureSet::needsSheenAlbedo(const EvalOptions& o) const {
   switch (o.profile) {
     case Profile::Spec: return ratifiedSheen && o.sheenScaling != SheenScaling::None;
-    case Profile::Khronos:
     case Profile::Filament:
     case Profile::Babylon: return ratifiedSheen;
+    case Profile::Khronos:   // the renderer's own lut_sheen_E.png (engine_tables.hpp)
     case Profile::Threejs:
     case Profile::Materialx: return false;  // analytic albedo fits
   }

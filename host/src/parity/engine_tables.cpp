@@ -1,10 +1,14 @@
-// three.js's DFG table as floats: the RG16F texel bits carried over in threejs_dfg_lut.inc,
-// widened with the IEEE 754 binary16 rules (normals, subnormals; the table has no inf or NaN).
+// The engine tables as floats: three.js's RG16F texel bits (threejs_dfg_lut.inc) widened with
+// the IEEE 754 binary16 rules (normals, subnormals; the table has no inf or NaN), and the Sample
+// Renderer's 8-bit sheen albedo texels (khronos_sheen_e_lut.inc, zlib) as unorm8 / 255.
 #include "parity/engine_tables.hpp"
 
 #include <cmath>
 #include <cstdint>
 #include <iterator>
+#include <stdexcept>
+
+#include <zlib.h>
 
 #include "kernels/common/material_layout.h"
 
@@ -15,6 +19,10 @@ constexpr std::uint16_t kBits[] = {
 #include "parity/threejs_dfg_lut.inc"
 };
 static_assert(std::size(kBits) == 2 * BRDFCL_DFG_SIZE * BRDFCL_DFG_SIZE, "16x16 texels of (A, B)");
+
+constexpr unsigned char kSheenE[] = {
+#include "parity/khronos_sheen_e_lut.inc"
+};
 
 float halfToFloat(std::uint16_t h) {
   const int exponent = (h >> 10) & 0x1f, mantissa = h & 0x3ff;
@@ -29,6 +37,21 @@ const std::vector<float>& threejsDfgTable() {
   static const std::vector<float> table = [] {
     std::vector<float> t;
     for (std::uint16_t b : kBits) t.push_back(halfToFloat(b));
+    return t;
+  }();
+  return table;
+}
+
+const std::vector<float>& khronosSheenETable() {
+  static const std::vector<float> table = [] {
+    constexpr uLongf kTexels = uLongf(BRDFCL_KHRONOS_SHEEN_E_SIZE) * BRDFCL_KHRONOS_SHEEN_E_SIZE;
+    std::vector<unsigned char> texels(kTexels);
+    uLongf n = kTexels;
+    // The data is compiled in: a failure here is a broken build, not bad input.
+    if (uncompress(texels.data(), &n, kSheenE, uLong(std::size(kSheenE))) != Z_OK || n != kTexels)
+      throw std::logic_error("khronos_sheen_e_lut.inc does not inflate to 1024x1024 texels");
+    std::vector<float> t(kTexels);
+    for (uLongf i = 0; i < kTexels; ++i) t[i] = float(texels[i]) / 255.0f;
     return t;
   }();
   return table;

@@ -558,8 +558,11 @@ std::shared_ptr<const PreparedLight> prepareLight(Runtime& rt, const Environment
     s.dfg = readOnly(ctx, dfg);
     const auto e = cachedSheenAlbedo(rt, table.sheenDistribution, table.sheenVisibility);
     std::vector<float> tables = e.values;
-    // Engine profiles read three.js's DFG table right after the E table (docs/profiles.md).
+    // Engine profiles read three.js's DFG table right after the E table, and khronos the Sample
+    // Renderer's sheen albedo texture after that (docs/profiles.md "Tables").
     if (options.profile != Profile::Spec) tables.insert(tables.end(), threejsDfgTable().begin(), threejsDfgTable().end());
+    if (options.profile == Profile::Khronos)
+      tables.insert(tables.end(), khronosSheenETable().begin(), khronosSheenETable().end());
     s.sheenE = readOnly(ctx, tables);
     s.sheenESize = int(e.width);
     std::vector<float> fl(kFresnelLambertSize);

@@ -141,6 +141,21 @@ BRDF_FN void DFG_ThreeJs(__global const float* dfg, realw roughness, realw mu, r
   *B = mix(mix(b00, b01, fx), mix(b10, b11, fx), fy);
 }
 
+/* The Sample Renderer's lut_sheen_E.png (docs/profiles.md "Tables"), sampled as its LUTSampler
+   (LINEAR, CLAMP_TO_EDGE) samples texture(u_SheenELUT, vec2(N.V, sheen roughness)).r: texel (i, j)
+   centred at ((i + 0.5)/n, (j + 0.5)/n). The weights are float: a GPU's fixed-point rounding of
+   them (8 fraction bits on most hardware) is not reproduced. */
+BRDF_FN realw E_SheenKhronos(__global const float* lut, realw mu, realw r) {
+  const int n = BRDFCL_KHRONOS_SHEEN_E_SIZE;
+  realw x = clamp(mu * (float)n - 0.5f, 0.0f, (float)(n - 1));
+  realw y = clamp(r * (float)n - 0.5f, 0.0f, (float)(n - 1));
+  intw x0 = min(CONVERT_INTW(x), n - 2), y0 = min(CONVERT_INTW(y), n - 2);
+  realw fx = x - CONVERT_REALW(x0), fy = y - CONVERT_REALW(y0);
+  intw i = y0 * n + x0;
+  realw t00 = GATHERW(lut, i), t01 = GATHERW(lut + 1, i), t10 = GATHERW(lut + n, i), t11 = GATHERW(lut + n + 1, i);
+  return mix(mix(t00, t01, fx), mix(t10, t11, fx), fy);
+}
+
 /* Single-scattering GGX albedo with F = 1: A + B of the table. */
 BRDF_FN realw Ess_ThreeJs(__global const float* dfg, realw roughness, realw mu) {
   realw A, B;

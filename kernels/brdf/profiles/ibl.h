@@ -11,7 +11,8 @@
 
 /* What the shading kernel hands over: the prefiltered chains (GGX and Charlie, roughness linear
    in the level), the irradiance map (radiance a white Lambertian reflects), brdfcl's GGX DFG table
-   (A, B at N.V, perceptual roughness) and the profile's tables (E, then three.js's DFG). */
+   (A, B at N.V, perceptual roughness) and the profile's tables (E, then three.js's DFG, then for
+   khronos the Sample Renderer's sheen albedo texture). */
 typedef struct {
   __global const float* ggx;
   __global const float* charlie;
@@ -71,8 +72,9 @@ static inline float3 bent_normal_spec(const profile_ibl_frame* f, float s, float
 
 #if BRDFCL_PROFILE == BRDFCL_PROFILE_KHRONOS
 /* Sample Renderer ibl.glsl@4e170c47: Fdez-Aguera's roughness-dependent Fresnel with multiple
-   scattering; Charlie-prefiltered sheen times E with view-only scaling; the coat's radiance with
-   no DFG factor; an unnormalized bent normal without the R-mix step. */
+   scattering; Charlie-prefiltered sheen times E with view-only scaling by the renderer's
+   lut_sheen_E.png; the coat's radiance with no DFG factor; an unnormalized bent normal without
+   the R-mix step. */
 static inline float3 F_ibl_khronos(float3 F0, float r, float nv, float2 ab) {
   float3 kS = F0 + (max((float3)(1.0f - r), F0) - F0) * s5f(nv);
   float3 FssEss = kS * ab.x + ab.y;
@@ -98,9 +100,14 @@ static inline float3 profile_ibl(const profile_ibl_env* e, const profile_ibl_fra
   float3 col = mix(mix(ibl_irradiance(e, f->N) * base, Ls, Fd), metal, q.metallic);
   float sheen_max = brdfcl_max3(q.sheen_color);
   if (sheen_max > 0.0f) {
-    float E = ibl_sheen_e(e, max(nv, 1e-4f), q.sheen_roughness); /* the E table's floor (docs/profiles.md "Tables") */
+    /* The Charlie lobe's albedo from brdfcl's E at the E table's floor (docs/profiles.md "Tables";
+       the renderer bakes its u_CharlieLUT at run time); the base's scaling from the renderer's
+       lut_sheen_E.png, after the E and DFG tables. */
+    float E = ibl_sheen_e(e, max(nv, 1e-4f), q.sheen_roughness);
+    float E_lut = E_SheenKhronos(e->tables + e->e_size * e->e_size + 2 * BRDFCL_DFG_SIZE * BRDFCL_DFG_SIZE, nv,
+                                 q.sheen_roughness);
     float3 c = (float3)(q.sheen_color[0], q.sheen_color[1], q.sheen_color[2]);
-    col = ibl_charlie_radiance(e, reflect_v(f->V, f->N), q.sheen_roughness) * c * E + col * (1.0f - sheen_max * E);
+    col = ibl_charlie_radiance(e, reflect_v(f->V, f->N), q.sheen_roughness) * c * E + col * (1.0f - sheen_max * E_lut);
   }
   float ncv = clamp(dot(f->Nc, f->V), 0.0f, 1.0f);
   float coat = q.clearcoat * (p->ior_f0 + (1.0f - p->ior_f0) * s5f(ncv));

@@ -1,7 +1,8 @@
 /* --profile khronos: the glTF Sample Renderer's punctual BRDF (pbr.frag@9dfbb82b, brdf.glsl as in
    glTF-Sample-Viewer@d0b428c8), docs/profiles.md "khronos". No alpha floors (D is infinite where
    the engine's float D_GGX denominator is 0, NaN at alpha = 0, as there), F0 from the IOR for base
-   and coat, sheen D on the engine's float 1 - N.H^2, sheen V clamped to 1. */
+   and coat, sheen D on the engine's float 1 - N.H^2, sheen V clamped to 1, the sheen albedo from
+   the renderer's lut_sheen_E.png. */
 #ifndef BRDFCL_PROFILE_KHRONOS_H
 #define BRDFCL_PROFILE_KHRONOS_H
 
@@ -39,9 +40,10 @@ BRDF_FN rgbw brdf_profile(const material_lanes m, vec3w L, vec3w V, vec3w Lc, ve
 #if BRDFCL_HAS_SHEEN
   {
     sheen = sheen_coloured(m, D_CharlieOneMinusCos2(g.hz, m.sheen_alpha) * min(V_Charlie(g.NdotL, g.NdotV, m.sheen_alpha), 1.0f));
-    sheen_albedo_row row = E_SheenAlbedoRow(e_size, m.sheen_roughness);
-    realw sh = min(1.0f - m.sheen_max * E_SheenAlbedo(tables, e_size, row, g.NdotV),
-                   1.0f - m.sheen_max * E_SheenAlbedo(tables, e_size, row, g.NdotL));
+    /* albedoSheenScalingLUT: the renderer's own 8-bit table, after the E and DFG tables. */
+    __global const float* lut = tables + e_size * e_size + 2 * BRDFCL_DFG_SIZE * BRDFCL_DFG_SIZE;
+    realw sh = min(1.0f - m.sheen_max * E_SheenKhronos(lut, g.NdotV, m.sheen_roughness),
+                   1.0f - m.sheen_max * E_SheenKhronos(lut, g.NdotL, m.sheen_roughness));
     scale_base(&diffuse, &specular, sh);
   }
 #endif
