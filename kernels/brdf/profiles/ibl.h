@@ -118,8 +118,10 @@ static inline float3 profile_ibl(const profile_ibl_env* e, const profile_ibl_fra
 
 #elif BRDFCL_PROFILE == BRDFCL_PROFILE_THREEJS
 /* PhysicalLightingModel (TSL) indirect: Fdez-Aguera multiscatter from its DFG table at
-   (roughness, N.V), the radiance read about mix(R, N, roughness^2), sheen from the irradiance
-   times its analytic albedo and above the coat, the coat with 0.04 A + B. */
+   (roughness, N.V), computed for the dielectric f0 and for the base colour and mixed by metalness
+   (the multiscatter term is not linear in f0, so this is not the multiscatter of the blended f0),
+   the radiance read about mix(R, N, roughness^2), sheen from the irradiance times its analytic
+   albedo and above the coat, the coat with 0.04 A + B; N.V clamped to [0, 1], as the engine does. */
 static inline void ms_threejs(float3 Fr, float2 ab, float3* single, float3* multi) {
   float3 FssEss = Fr * ab.x + ab.y;
   float Ess = ab.x + ab.y, Ems = 1.0f - Ess;
@@ -141,20 +143,20 @@ static inline float3 radiance_threejs(const profile_ibl_env* e, float3 V, float3
 
 static inline float3 profile_ibl(const profile_ibl_env* e, const profile_ibl_frame* f, brdfcl_material_params q,
                                  const brdfcl_material* p, float* emission_weight) {
-  float nv = max(dot(f->N, f->V), 1e-4f), r = p->roughness;
+  float nv = clamp(dot(f->N, f->V), 0.0f, 1.0f), r = p->roughness;
   float3 base = (float3)(q.base_color[0], q.base_color[1], q.base_color[2]);
   float3 n = q.anisotropy_strength > 0.0f ? bent_normal_spec(f, q.anisotropy_strength, r) : f->N;
   float3 irr = ibl_irradiance(e, f->N);
   float2 ab = dfg_threejs(e, r, nv);
-  float3 f0b = mix((float3)(p->ior_f0), base, q.metallic);
-  float3 ss, ms, ss_d, ms_d;
-  ms_threejs(f0b, ab, &ss, &ms);
+  float3 ss_d, ms_d, ss_m, ms_m;
   ms_threejs((float3)(p->ior_f0), ab, &ss_d, &ms_d);
+  ms_threejs(base, ab, &ss_m, &ms_m);
+  float3 ss = mix(ss_d, ss_m, q.metallic), ms = mix(ms_d, ms_m, q.metallic);
   float3 col = radiance_threejs(e, f->V, n, r) * ss + ms * irr + (1.0f - q.metallic) * base * (1.0f - (ss_d + ms_d)) * irr;
   float sheen_max = brdfcl_max3(q.sheen_color);
   float Es = sheen_max > 0.0f ? E_SheenThreeJs(nv, p->sheen_roughness) : 0.0f;
   col *= 1.0f - sheen_max * Es;
-  float ncv = max(dot(f->Nc, f->V), 1e-4f), rc = sqrt(p->clearcoat_alpha);
+  float ncv = clamp(dot(f->Nc, f->V), 0.0f, 1.0f), rc = sqrt(p->clearcoat_alpha);
   float Fcc = F_SchlickSG(0.04f, 1.0f, Fs_SphericalGaussian(ncv));
   float2 abc = dfg_threejs(e, rc, ncv);
   col = col * (1.0f - q.clearcoat * Fcc) + q.clearcoat * radiance_threejs(e, f->V, f->Nc, rc) * (0.04f * abc.x + abc.y);
