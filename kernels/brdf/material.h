@@ -58,7 +58,8 @@
 #if BRDFCL_PROFILE == BRDFCL_PROFILE_SPEC
 #define BRDFCL_PROFILE_LANES(X)
 #else
-#define BRDFCL_PROFILE_LANES(X) X(roughness, roughness) X(ior_f0, ior_f0) X(aniso_strength, aniso_strength)
+#define BRDFCL_PROFILE_LANES(X) \
+  X(roughness, roughness) X(ior_f0, ior_f0) X(aniso_strength, aniso_strength) X(clearcoat_roughness, clearcoat_roughness)
 #endif
 
 #define BRDFCL_DECLARE_LANE(name, field) realw name;

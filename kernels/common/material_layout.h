@@ -37,7 +37,8 @@ typedef struct brdfcl_material {
   float roughness;       /* the profile's perceptual base roughness (DFG table coordinate) */
   float ior_f0;          /* dielectric F0 from KHR_materials_ior, as the profile derives it */
   float aniso_strength;  /* anisotropyStrength */
-  float reserved[3];     /* pads the record to 96 bytes */
+  float clearcoat_roughness; /* the profile's perceptual coat roughness (DFG table coordinate) */
+  float reserved[2];     /* pads the record to 96 bytes */
 } brdfcl_material;
 
 /* Clamps, documented in docs/model.md ("Clamps"). Both sit below the alphas of roughness 0.05

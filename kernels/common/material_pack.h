@@ -39,7 +39,8 @@ BRDFCL_PACK_FN brdfcl_material brdfcl_pack_material(brdfcl_material_params m) {
     p.base_color[i] = m.base_color[i];
     p.sheen_color[i] = m.sheen_color[i];
   }
-  for (int i = 0; i < 3; ++i) p.reserved[i] = 0.0f;
+  for (int i = 0; i < 2; ++i) p.reserved[i] = 0.0f;
+  p.clearcoat_roughness = m.clearcoat_roughness;
   p.roughness = m.roughness;
   p.ior_f0 = 0.04f;
   p.aniso_strength = m.anisotropy_strength;

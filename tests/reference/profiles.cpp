@@ -499,11 +499,12 @@ Lobes babylon(const Mat& q, const Geometry& g) {
     sh = 1.0 - q.maxC * E_CN(g.NdotV, q.rs);  // view only, raw r_s
   }
 
-  double Fc = 0.0, coat = 0.0;
+  double Fc = 0.0, coat = 0.0, EssC = 1.0;
   if (q.coat) {
     const double alphaGC = q.rc * q.rc + 0.0005;
     Fc = q.cc * F_SchlickP(0.04, 1.0, g.VdotH);
     coat = Fc * D_GGXp(alphaGC, g.NdotH) * 0.25 / (g.VdotH * g.VdotH);
+    EssC = threejsDfgEss(q.rc, g.NdotV);  // the coat's own raw roughness
   }
 
   Lobes out;
@@ -511,11 +512,12 @@ Lobes babylon(const Mat& q, const Geometry& g) {
     const double f0 = mix(f0ior, q.b[i], q.m);
     const double F = F_SchlickP(f0, 1.0, g.VdotH);
     const double ec = 1.0 + f0 * (1.0 / Ess - 1.0);
-    // Energy conservation of the diffuse on N.H (the engine's cosine), per channel.
-    out.diffuse[i] = (1.0 - Fc) * sh * (1.0 - q.m) * q.b[i] / kPi * (1.0 - F_SchlickP(f0, 1.0, g.NdotH));
+    // Legacy specular energy conservation: the albedo is b (1 - f0_ior)(1 - m), no angle.
+    out.diffuse[i] = (1.0 - Fc) * sh * (1.0 - f0ior) * (1.0 - q.m) * q.b[i] / kPi;
     out.specular[i] = (1.0 - Fc) * sh * F * S * ec;
     out.sheen[i] = (1.0 - Fc) * q.c[i] * sheenDV;
-    out.clearcoat[i] = coat;
+    // The coat's multiscatter factor with the base's F0, per channel.
+    out.clearcoat[i] = coat * (1.0 + f0 * (1.0 / EssC - 1.0));
   }
   return out;
 }
@@ -620,11 +622,17 @@ Rgb profileBrdf(const MaterialParams& m, Profile p, Lobe lobe, Vec3 L, Vec3 V) {
   g.B = {-std::sin(theta), std::cos(theta), 0.0};
 
   // Each engine's own cosine clamps: Khronos and three.js clamp to [0, 1] (no floor), Filament
-  // floors N.V at 1e-4 (clampNoV) and saturates N.L, MaterialX clamps both to [1e-8, 1].
+  // floors N.V at 1e-4 (clampNoV) and saturates N.L, MaterialX clamps both to [1e-8, 1],
+  // Babylon floors N.L at 1e-7 and adds 1e-7 to N.V.
   if (p == Profile::Filament) g.NdotV = std::max(g.NdotV, 1e-4);
   if (p == Profile::Materialx) {
     g.NdotL = std::max(g.NdotL, 1e-8);
     g.NdotV = std::max(g.NdotV, 1e-8);
+  }
+  // Babylon: saturateEps floors N.L at 1e-7, absEps adds 1e-7 to N.V.
+  if (p == Profile::Babylon) {
+    g.NdotL = std::max(g.NdotL, 1e-7);
+    g.NdotV = g.NdotV + 1e-7;
   }
 
   const Mat q = readMaterial(m);

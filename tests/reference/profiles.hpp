@@ -27,7 +27,8 @@ namespace ref {
 //  - threejs: Ê at the raw N.V / N.L (no 1e-4 floor), its a, b in rho_s; ms per channel (f0_b).
 //  - filament: f90 one scalar from f0.r + f0.g + f0.b; every D and V (and Kelemen's V) goes
 //    through saturateMediump, min(x, 65504), as Filament's source writes them.
-//  - babylon: E_ss = DFG(raw r, N.V) (not alphaG's roughness), clamp-to-edge below 1/32.
+//  - babylon: E_ss = DFG(raw r, N.V) (not alphaG's roughness), clamp-to-edge below 1/32; the
+//    coat's E_ss = DFG(raw r_c, N.V).
 //  - materialx: the isotropic case is the Burley form with alpha_t = alpha_b = clamp(alpha, 1e-5,
 //    1); t_d uses comp(F_d(V.H), alpha_bar), so it depends on L as the contract writes it.
 //  - khronos: the "differs from spec only where" list omits the anisotropic V's min(., 1), which

@@ -53,8 +53,8 @@ constexpr PinnedEngine kEngines[] = {
       "common_material.fs@0371a805, desktop (no release tag)"}},
     {Profile::Babylon,
      {"Babylon.js PBRMaterial",
-      "BabylonJS/Babylon.js pbrBRDFFunctions.fx@00e0487b, pbrBlockSheen.fx@626ee12b, pbrBlockClearcoat.fx@011c37f9, "
-      "pbrBlockAnisotropic.fx@036892d8, pbrBlockReflectance.fx@158c4a70 (no release tag)"}},
+      "BabylonJS/Babylon.js pbrBRDFFunctions.fx@00e0487b, lightFragment.fx@01b83572, pbrBlockSheen.fx@626ee12b, "
+      "pbrBlockFinalLitComponents.fx@076e49a1, glTF loader defines (legacy specular energy conservation; no release tag)"}},
     {Profile::Materialx,
      {"MaterialX gltf_pbr",
       "1.39.5+ at commit 4177b2cb (main, 2026-07-01, after release v1.39.5; gltf_pbr nodedef 2.0.1)"}},
