@@ -1,0 +1,55 @@
+// `brdfcl gbuffer`: a G-buffer EXR of the built-in spheres or of a glTF asset, ray-cast at pixel
+// centres (docs/gbuffer.md).
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+
+#include <fmt/format.h>
+
+#include "brdfcl/demo_asset.hpp"
+#include "brdfcl/error.hpp"
+#include "brdfcl/frame_budget.hpp"
+#include "brdfcl/gltf_frame.hpp"
+#include "brdfcl/image.hpp"
+#include "brdfcl/image_diff.hpp"
+#include "brdfcl/io.hpp"
+#include "commands.hpp"
+#include "host/src/io/output.hpp"
+#include "render_options.hpp"
+
+namespace brdfcl::cli {
+
+void addGbufferCommand(CLI::App& app) {
+  struct Args {
+    std::string scene = "spheres", out, device;
+    GltfArgs gltf;
+  };
+  auto a = std::make_shared<Args>();
+  auto* cmd = app.add_subcommand("gbuffer", "Ray-cast a glTF asset or a built-in scene into a G-buffer EXR (docs/gbuffer.md)");
+  cmd->add_option("--scene", a->scene, "built-in scene (spheres)");
+  a->gltf.add(cmd);
+  cmd->add_option("--size", a->gltf.size, "WIDTHxHEIGHT (default 768x768 for spheres; 1280x720 or the camera's aspect at 720 rows)");
+  cmd->add_option("--out", a->out, "output G-buffer .exr")->required();
+  cmd->add_option("--device", a->device, "device index or name substring, or all, or a list such as 0,2 to shade row bands on several devices");
+  cmd->callback([a, cmd] {
+    checkOutput("--out", a->out, ".exr");
+    checkDistinctFiles({{"--gltf", a->gltf.path, false}, {"--out", a->out, true}});
+    if (!a->gltf.path.empty()) {
+      if (cmd->count("--scene")) throw Error("--scene and --gltf are alternatives; give one");
+      const LoadedAsset l = loadAsset(a->gltf);
+      checkFrameFits(FrameJob::GBuffer, l.width, l.height, usableHostMemory());
+      gltf::Raycaster raycaster(l.asset);
+      writeGBuffer(a->out, raycaster.trace(l.view, l.width, l.height));
+      return;
+    }
+    a->gltf.checkBuiltin(cmd);
+    int w = 768, h = 768;
+    if (!a->gltf.size.empty()) parseSize(a->gltf.size, w, h);
+    const Scene scene = builtinScene(a->scene);
+    checkFrameFits(FrameJob::GBuffer, w, h, usableHostMemory());
+    DeviceSet devices(a->device);
+    writeGBuffer(a->out, renderSpheresGBuffer(devices.runtime(0), scene, w, h));
+  });
+}
+
+}  // namespace brdfcl::cli
