@@ -34,10 +34,9 @@ void addDemoCommand(CLI::App& app) {
   cmd->callback([a] {
     checkSpp(a->spp);
     checkExposure(a->exposure);
-    if (!a->size.empty()) {
-      int w = 0, h = 0;
-      parseSize(a->size, w, h);
-    }
+    GltfArgs asset;
+    asset.size = a->size;
+    RenderJob job = asset.job();  // --size parsed before any file is written
     std::error_code ec;
     if (std::filesystem::exists("out", ec) && !std::filesystem::is_directory("out", ec))
       throw Error("cannot write the demo into 'out': it exists and is not a directory; move it or run elsewhere");
@@ -46,16 +45,14 @@ void addDemoCommand(CLI::App& app) {
     const std::string glb = "out/demo.glb", png = "out/demo.png", exr = "out/demo.exr";
     for (const auto& p : {glb, png, exr}) checkOutputPath("demo", p);
     gltf::writeDemoAsset(glb);
-    GltfArgs args;
-    args.path = glb;
-    args.size = a->size;
-    const LoadedAsset l = loadAsset(args);
-    Environment studio;
-    studio.builtinKind = "studio";
-    const Scene lighting = gltf::frameLighting(l.asset, l.view, "gltf", studio, true);
-    checkFrameFits(FrameJob::Render, l.width, l.height, usableHostMemory());
+    job.gltf = glb;
+    job.environment = "studio";
+    job.environmentGiven = true;
+    job.spp = a->spp;
+    job.frameProgress = progressLine("brdfcl render", "sample");
+    const PreparedRender prepared = prepareRender(job);
     DeviceSet devices(a->device);
-    writeImages(renderGltf(devices, l, lighting, a->spp, ""), exr, png, a->exposure);
+    writeImages(renderPrepared(devices, prepared, job), exr, png, a->exposure);
     auto abs = [](const std::string& p) { return std::filesystem::absolute(p).string(); };
     fmt::print("brdfcl demo: wrote the sphere sweep as a glTF asset and rendered it on {}\n  {}\n  {}\n  {}\n"
                "Rows: white sheen and coloured sheen over a woven texture (sheen roughness 0.05 to 1), clearcoat over\n"

@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <optional>
 
 #include <fmt/format.h>
 
@@ -34,21 +35,12 @@ void addGbufferCommand(CLI::App& app) {
   cmd->callback([a, cmd] {
     checkOutput("--out", a->out, ".exr");
     checkDistinctFiles({{"--gltf", a->gltf.path, false}, {"--out", a->out, true}});
-    if (!a->gltf.path.empty()) {
-      if (cmd->count("--scene")) throw Error("--scene and --gltf are alternatives; give one");
-      const LoadedAsset l = loadAsset(a->gltf);
-      checkFrameFits(FrameJob::GBuffer, l.width, l.height, usableHostMemory());
-      gltf::Raycaster raycaster(l.asset);
-      writeGBuffer(a->out, raycaster.trace(l.view, l.width, l.height));
-      return;
-    }
-    a->gltf.checkBuiltin(cmd);
-    int w = 768, h = 768;
-    if (!a->gltf.size.empty()) parseSize(a->gltf.size, w, h);
-    const Scene scene = builtinScene(a->scene);
-    checkFrameFits(FrameJob::GBuffer, w, h, usableHostMemory());
-    DeviceSet devices(a->device);
-    writeGBuffer(a->out, renderSpheresGBuffer(devices.runtime(0), scene, w, h));
+    if (!a->gltf.path.empty() && cmd->count("--scene")) throw Error("--scene and --gltf are alternatives; give one");
+    RenderJob job = a->gltf.job();
+    job.scene = a->scene;
+    const PreparedRender prepared = prepareRender(job, FrameJob::GBuffer);
+    std::optional<DeviceSet> devices;  // the built-in scene is ray-cast on a device
+    writeGBuffer(a->out, tracePrepared(prepared, [&]() -> Runtime& { return devices.emplace(a->device).runtime(0); }));
   });
 }
 

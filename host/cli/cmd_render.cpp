@@ -20,16 +20,67 @@
 
 namespace brdfcl::cli {
 
+namespace {
+struct Args {
+  std::string scene = "spheres", out, exr, gbuffer, device;
+  float exposure = 0.0f;
+  int spp = 4;
+  GltfArgs gltf;
+  LightingArgs lighting;
+  IblArgs ibl;
+  ProfileArgs profile;
+  // Set by checkOutputs: the files --out stands for.
+  std::string png, exrOut;
+};
+
+// Every output named, its extension and writability, and the options' ranges, before any work.
+void checkOutputs(Args& a, bool diff) {
+  a.png = a.out;
+  a.exrOut = a.exr;
+  if (diff && lowerExtension(a.out) != ".png" && !detail::isStreamTarget(a.out))
+    throw Error(fmt::format("--out '{}': with --diff-against it is the difference picture, a .png; keep the render "
+                            "with --exr FILE.exr",
+                            a.out));
+  if (diff) {
+    // The picture is --out; --exr keeps the --profile render.
+  } else if (lowerExtension(a.out) == ".exr" && !detail::isStreamTarget(a.out)) {
+    if (!a.exrOut.empty()) throw Error("--out is already the EXR; drop --exr, or give --out FILE.png");
+    a.exrOut = a.out;
+    a.png.clear();
+  } else if (lowerExtension(a.out) != ".png" && !detail::isStreamTarget(a.out)) {
+    throw Error(fmt::format("--out '{}' must end in .png or .exr", a.out));
+  }
+  checkOneStdout({{"--out", &a.out}, {"--exr", &a.exr}, {"--gbuffer", &a.gbuffer}});
+  checkOutput("--out", a.out, a.png.empty() ? ".exr" : ".png");
+  checkOutput("--exr", a.exr, ".exr");
+  checkOutput("--gbuffer", a.gbuffer, ".exr");
+  checkDistinctFiles({{"--gltf", a.gltf.path, false},
+                      {"--environment", a.lighting.environmentFile(), false},
+                      {"--lights", a.lighting.lightsFile(), false},
+                      {"--out", a.out, true},
+                      {"--exr", a.exr, true},
+                      {"--gbuffer", a.gbuffer, true}});
+  checkExposure(a.exposure);
+  checkSpp(a.spp);
+}
+
+// Under --diff-against: the --profile render to --exr, and the picture of the difference.
+void writeOutputs(const Args& a, CLI::App* cmd, bool diff, const Image& img, const Image& other) {
+  if (!diff) {
+    writeImages(img, a.exrOut, a.png, a.exposure);
+    a.profile.printEngines(cmd);
+    return;
+  }
+  if (!a.exrOut.empty()) writeImages(img, a.exrOut, "", a.exposure);
+  const std::string nameA = "--profile " + a.profile.profile, nameB = "--profile " + a.profile.against;
+  const ImageDiff d = diffImages(img.rgb, other.rgb, img.width, img.height);
+  writeImageDiffPng(a.out, d, nameA, nameB, defaultDiffRange(d.stats));
+  std::fputs(formatImageDiff(d.stats, nameA, nameB).c_str(), detail::isStreamTarget(a.out) ? stderr : stdout);
+  a.profile.printEngines(cmd);
+}
+}  // namespace
+
 void addRenderCommand(CLI::App& app) {
-  struct Args {
-    std::string scene = "spheres", out, exr, gbuffer, device;
-    float exposure = 0.0f;
-    int spp = 4;
-    GltfArgs gltf;
-    LightingArgs lighting;
-    IblArgs ibl;
-    ProfileArgs profile;
-  };
   auto a = std::make_shared<Args>();
   auto* cmd = app.add_subcommand("render", "Render a glTF asset or a built-in scene (G-buffer + shading) to PNG (and EXR)");
   cmd->add_option("--scene", a->scene, "built-in scene (spheres)");
@@ -49,94 +100,41 @@ void addRenderCommand(CLI::App& app) {
     const EvalOptions model = a->profile.options();
     const bool diff = cmd->count("--diff-against") > 0;
     const EvalOptions against = diff ? a->profile.againstOptions() : EvalOptions{};
-    std::string png = a->out, exr = a->exr;
     Image img, other;  // other: the --diff-against render
     std::vector<mpi::Share> shares;
     session.together([&] {
-      if (diff && lowerExtension(a->out) != ".png" && !detail::isStreamTarget(a->out))
-        throw Error(fmt::format("--out '{}': with --diff-against it is the difference picture, a .png; keep the render "
-                                "with --exr FILE.exr",
-                                a->out));
-      if (diff) {
-        // The picture is --out; --exr keeps the --profile render.
-      } else if (lowerExtension(a->out) == ".exr" && !detail::isStreamTarget(a->out)) {
-        if (!exr.empty()) throw Error("--out is already the EXR; drop --exr, or give --out FILE.png");
-        exr = a->out;
-        png.clear();
-      } else if (lowerExtension(a->out) != ".png" && !detail::isStreamTarget(a->out)) {
-        throw Error(fmt::format("--out '{}' must end in .png or .exr", a->out));
-      }
-      checkOneStdout({{"--out", &a->out}, {"--exr", &a->exr}, {"--gbuffer", &a->gbuffer}});
-      checkOutput("--out", a->out, png.empty() ? ".exr" : ".png");
-      checkOutput("--exr", a->exr, ".exr");
-      checkOutput("--gbuffer", a->gbuffer, ".exr");
-      checkDistinctFiles({{"--gltf", a->gltf.path, false},
-                          {"--environment", a->lighting.environmentFile(), false},
-                          {"--lights", a->lighting.lightsFile(), false},
-                          {"--out", a->out, true},
-                          {"--exr", a->exr, true},
-                          {"--gbuffer", a->gbuffer, true}});
-      checkExposure(a->exposure);
-      checkSpp(a->spp);
-      const ShadeOptions shadeOptions = a->ibl.check(cmd, "brdfcl render");
-      if (shadeOptions.ibl == IblMode::Exact && (model.profile != Profile::Spec || against.profile != Profile::Spec))
-        throw Error("--ibl exact integrates the spec's BRDF only; an engine profile reproduces its engine's own "
-                    "image-based light, so use --ibl split-sum with --profile and --diff-against");
-      const Environment environment = a->lighting.environmentChoice(cmd);
-      // Rank 0 alone writes the G-buffer (every rank ray-casts the whole frame).
-      const std::string gbufferOut = writesOutputs() ? a->gbuffer : "";
-      if (!a->gltf.path.empty()) {
-        if (cmd->count("--scene")) throw Error("--scene and --gltf are alternatives; give one");
-        const LoadedAsset l = loadAsset(a->gltf);
-        const Scene lighting =
-            gltf::frameLighting(l.asset, l.view, a->lighting.lights, environment, a->lighting.environmentGiven,
-                                a->gltf.allowOutsideUris);
-        checkFrameFits(FrameJob::Render, l.width, l.height, usableHostMemory());
-        shares = rowShares(l.height, shadeOptions.ibl);
-        if (myShareIsEmpty(shares)) return;
-        const ShadeOptions mine = forRank(shadeOptions, shares);
-        DeviceSet devices(mpi::deviceSelector(a->device));
-        img = renderGltf(devices, l, lighting, a->spp, gbufferOut, mine, model);
-        if (diff) other = renderGltf(devices, l, lighting, a->spp, "", mine, against);
-        return;
-      }
-      a->gltf.checkBuiltin(cmd);
-      if (cmd->count("--spp")) throw Error("--spp applies to glTF assets (the spheres are shaded at pixel centres); add --gltf FILE");
-      int w = 768, h = 768;
-      if (!a->gltf.size.empty()) parseSize(a->gltf.size, w, h);
-      Scene scene = builtinScene(a->scene);
-      if (a->lighting.environmentGiven) scene.environment = environment;
-      gltf::applyLightsOption(scene, a->lighting.lights, a->lighting.environmentGiven, a->gltf.allowOutsideUris);
-      checkFrameFits(FrameJob::Render, w, h, usableHostMemory());
-      shares = rowShares(h, shadeOptions.ibl);
+      checkOutputs(*a, diff);
+      const ShadeOptions shade = a->ibl.check(cmd, "brdfcl render");
+      checkExactIbl(shade, model, against);
+      if (!a->gltf.path.empty() && cmd->count("--scene")) throw Error("--scene and --gltf are alternatives; give one");
+      RenderJob job = a->gltf.job();
+      job.model = model;
+      job.shade = shade;
+      job.scene = a->scene;
+      job.spp = a->spp;
+      job.sppGiven = cmd->count("--spp") > 0;
+      a->lighting.apply(cmd, job);
+      job.frameProgress = progressLine("brdfcl render", "sample");
+      job.exactStats = printExactSummary;
+      const PreparedRender prepared = prepareRender(job);
+      shares = rowShares(prepared.height, job.shade.ibl);
       if (myShareIsEmpty(shares)) return;
-      const ShadeOptions mine = forRank(shadeOptions, shares);
+      job.shade = forRank(job.shade, shares);
       DeviceSet devices(mpi::deviceSelector(a->device));
-      const GBuffer g = renderSpheresGBuffer(devices.runtime(0), scene, w, h);
-      if (!gbufferOut.empty()) writeGBuffer(gbufferOut, g);
-      Shader shader(devices, scene, model);
-      img = shadeWith(shader, g, mine);
+      // Rank 0 alone writes the G-buffer (every rank ray-casts the whole frame).
+      const bool keepGBuffer = writesOutputs() && !a->gbuffer.empty();
+      GBuffer g;
+      img = renderPrepared(devices, prepared, job, keepGBuffer ? &g : nullptr);
+      if (keepGBuffer) writeGBuffer(a->gbuffer, g);
       if (diff) {
-        Shader againstShader(devices, scene, against);
-        other = shadeWith(againstShader, g, mine);
+        job.model = against;
+        other = renderPrepared(devices, prepared, job);
       }
     });
     gatherRows(img, shares);
     if (diff) gatherRows(other, shares);
-    // Under --diff-against: the --profile render to --exr, and the picture of the difference.
     session.together([&] {
-      if (!writesOutputs()) return;
-      if (!diff) {
-        writeImages(img, exr, png, a->exposure);
-        a->profile.printEngines(cmd);
-        return;
-      }
-      if (!exr.empty()) writeImages(img, exr, "", a->exposure);
-      const std::string nameA = "--profile " + a->profile.profile, nameB = "--profile " + a->profile.against;
-      const ImageDiff d = diffImages(img.rgb, other.rgb, img.width, img.height);
-      writeImageDiffPng(a->out, d, nameA, nameB, defaultDiffRange(d.stats));
-      std::fputs(formatImageDiff(d.stats, nameA, nameB).c_str(), detail::isStreamTarget(a->out) ? stderr : stdout);
-      a->profile.printEngines(cmd);
+      if (writesOutputs()) writeOutputs(*a, cmd, diff, img, other);
     });
   });
 }

@@ -79,18 +79,17 @@ void writeImages(const Image& img, const std::string& exr, const std::string& pn
 }
 
 
-// The asset framed as the library frames it for renderJob (brdfcl/render_job.hpp).
-LoadedAsset loadAsset(const GltfArgs& a) {
-  gltf::LoadOptions options;
-  options.scene = a.scene;
-  options.variant = a.variant;
-  options.strict = a.strict;
-  options.allowOutsideUris = a.allowOutsideUris;
-  int w = 0, h = 0;
-  if (!a.size.empty()) parseSize(a.size, w, h);
-  LoadedAsset l = loadFramedAsset(a.path, options, a.camera, w, h);
-  for (const auto& warning : l.asset.warnings) printWarning(warning);
-  return l;
+RenderJob GltfArgs::job() const {
+  RenderJob j;
+  j.gltf = path;
+  j.camera = camera;
+  j.gltfScene = scene;
+  j.variant = variant;
+  j.strict = strict;
+  j.allowOutsideUris = allowOutsideUris;
+  if (!size.empty()) parseSize(size, j.width, j.height);
+  j.warn = printWarning;
+  return j;
 }
 
 // Progress on stderr only when a person is watching it: "<what>: <unit> 3/12, 0:41 left". A
@@ -113,9 +112,11 @@ std::function<void(int, int)> progressLine(const char* what, const char* unit) {
 Image shadeWith(Shader& shader, const GBuffer& g, const ShadeOptions& o) {
   ShadeStats stats;
   Image img = shader.shade(g, o, &stats);
-  if (o.ibl == IblMode::Exact) std::fprintf(stderr, "%s\n", exactIblSummary(stats).c_str());
+  if (o.ibl == IblMode::Exact) printExactSummary(stats);
   return img;
 }
+
+void printExactSummary(const ShadeStats& stats) { std::fprintf(stderr, "%s\n", exactIblSummary(stats).c_str()); }
 
 
 
@@ -159,13 +160,4 @@ std::string deviceNames(DeviceSet& devices) {
   return names;
 }
 
-Image renderGltf(DeviceSet& devices, const LoadedAsset& l, const Scene& lighting, int spp, const std::string& gbufferOut,
-                 const ShadeOptions& shadeOptions, const EvalOptions& model) {
-  const gltf::Raycaster raycaster(l.asset);
-  ShadeStats stats;
-  const Image img = renderFramedAsset(devices, l, raycaster, lighting, spp, shadeOptions, model, progressLine("brdfcl render", "sample"), &stats);
-  if (shadeOptions.ibl == IblMode::Exact) std::fprintf(stderr, "%s\n", exactIblSummary(stats).c_str());
-  if (!gbufferOut.empty()) writeGBuffer(gbufferOut, raycaster.trace(l.view, l.width, l.height));
-  return img;
-}
 }  // namespace brdfcl::cli

@@ -51,11 +51,9 @@ struct GltfArgs {
     cmd->add_option("--gltf-scene", scene, "glTF scene index (default: the file's default scene)");
     cmd->add_option("--variant", variant, "KHR_materials_variants variant name");
   }
-  // Options that only mean something for a glTF asset are refused for the built-in scenes.
-  void checkBuiltin(CLI::App* cmd) const {
-    for (const char* o : {"--camera", "--gltf-scene", "--variant", "--strict"})
-      if (cmd->count(o)) throw Error(fmt::format("{} applies to glTF assets; add --gltf FILE", o));
-  }
+  // A job with these choices and --size; the asset's warnings print as the CLI's. A glTF-only
+  // option on the built-in scenes is refused by prepareRender.
+  RenderJob job() const;
 };
 
 // --ibl and --ibl-samples of shade and render, checked before any work.
@@ -84,7 +82,6 @@ struct IblArgs {
 struct LightingArgs {
   std::string environment = "builtin", lights = "gltf";
   float envIntensity = 1.0f, envRotation = 0.0f;
-  bool environmentGiven = false;
 
   void add(CLI::App* cmd) {
     cmd->add_option("--environment", environment, "builtin|sky|studio|uniform|FILE.hdr|FILE.exr (default builtin: the sky)");
@@ -99,9 +96,13 @@ struct LightingArgs {
     return environment;
   }
   std::string lightsFile() const { return lights == "gltf" || lights == "none" ? "" : lights; }
-  Environment environmentChoice(CLI::App* cmd) {
-    environmentGiven = cmd->count("--environment") || cmd->count("--env-intensity") || cmd->count("--env-rotation");
-    return parseEnvironmentSpec(environment, envIntensity, envRotation);
+  // The job's environment and lights; the environment counts as given when any of its options is.
+  void apply(CLI::App* cmd, RenderJob& job) const {
+    job.environment = environment;
+    job.envIntensity = envIntensity;
+    job.envRotation = envRotation;
+    job.environmentGiven = cmd->count("--environment") || cmd->count("--env-intensity") || cmd->count("--env-rotation");
+    job.lights = lights;
   }
 };
 
@@ -139,13 +140,10 @@ struct ProfileArgs {
   }
 };
 
-using LoadedAsset = FramedAsset;
-
-// The asset framed as the library frames it for renderJob (brdfcl/render_job.hpp).
-LoadedAsset loadAsset(const GltfArgs& a);
-
 // Shades under the chosen image-based light; exact mode reports its error estimate on stderr.
 Image shadeWith(Shader& shader, const GBuffer& g, const ShadeOptions& o);
+// The error estimate of an exact image-based light, one line on stderr.
+void printExactSummary(const ShadeStats& stats);
 
 // The rows of a frame `height` rows tall that each rank shades under mpirun, indexed by rank.
 std::vector<mpi::Share> rowShares(int height, IblMode ibl);
@@ -157,8 +155,5 @@ void gatherRows(Image& img, const std::vector<mpi::Share>& shares);
 bool writesOutputs();
 // "pthread-... CPU", or the devices of a list joined by " + ".
 std::string deviceNames(DeviceSet& devices);
-
-Image renderGltf(DeviceSet& devices, const LoadedAsset& l, const Scene& lighting, int spp, const std::string& gbufferOut,
-                 const ShadeOptions& shadeOptions = {}, const EvalOptions& model = {});
 
 }  // namespace brdfcl::cli
