@@ -14,7 +14,7 @@
 
 #include "brdfcl/runtime.hpp"
 #include "tests/unit/process.hpp"
-#include "workload.hpp"
+#include "host/src/eval/workload.hpp"
 
 namespace fs = std::filesystem;
 

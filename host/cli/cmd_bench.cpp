@@ -14,7 +14,8 @@
 
 #include "brdfcl/error.hpp"
 #include "commands.hpp"
-#include "workload.hpp"
+#include "host/src/eval/workload.hpp"
+#include "peers.hpp"
 
 namespace brdfcl::cli {
 
@@ -167,10 +168,11 @@ void addBenchCommand(CLI::App& app) {
       }
       return;
     }
-    b.runPeer(peers::Flavor::OpenMPSimd);
-    const double simd = medianSeconds(args->runs, [&] { b.runPeer(peers::Flavor::OpenMPSimd); });
+    const auto runPeer = [&](peers::Flavor f) { peers::run(f, b.workload().name, b.peerInput()); };
+    runPeer(peers::Flavor::OpenMPSimd);
+    const double simd = medianSeconds(args->runs, [&] { runPeer(peers::Flavor::OpenMPSimd); });
     const double simdDeviation = b.peerDeviation();
-    const double scalar = medianSeconds(std::min(args->runs, 3), [&] { b.runPeer(peers::Flavor::Scalar); });
+    const double scalar = medianSeconds(std::min(args->runs, 3), [&] { runPeer(peers::Flavor::Scalar); });
     const double triad = peers::streamTriadBytesPerSecond(std::size_t(1) << 25, 5);
 
     // End to end through the public API for a small batch: what a second `eval` of 1K pays.

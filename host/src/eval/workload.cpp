@@ -1,6 +1,6 @@
 // Workload generation: materials per lobe and in-domain directions (N.L, N.V in [0.01, 1]) from
 // a fast counter-based generator, since 64M samples must not take longer to make than to run.
-#include "workload.hpp"
+#include "eval/workload.hpp"
 
 #include "brdfcl/error.hpp"
 

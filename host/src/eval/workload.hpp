@@ -1,6 +1,6 @@
 // The benchmark workloads shared by build/bin/brdfcl-bench and `brdfcl bench`: per lobe, K
 // random materials (256 by default) carrying exactly that lobe's layers, and N random in-domain samples written
-// straight into a SoaBatch so that the kernel and the peers read the same arrays.
+// straight into a SoaBatch so that the kernel and the C++ peers (bench/peers) read the same arrays.
 #pragma once
 #include <cstdint>
 #include <memory>
@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "brdfcl/evaluator.hpp"
-#include "peers.hpp"
+#include "host/src/eval/peer_input.hpp"
 
 namespace brdfcl::bench {
 
@@ -46,7 +46,8 @@ class Bench {
   void runKernel() { batch_->run(); }
   Evaluator& evaluator() { return *evaluator_; }
   const SoaBatch& batch() const { return *batch_; }
-  void runPeer(peers::Flavor flavor) { peers::run(flavor, workload_.name, peerInput_); }
+  // The batch's planes as the peers read them, with output planes of their own.
+  const peers::Input& peerInput() const { return peerInput_; }
   // Largest |kernel - peer| / (|kernel| + 1e-3) over the batch, after both ran.
   double peerDeviation() const;
   // Replaces the random directions with given ones, six planes of size() floats (L.xyz, V.xyz),
