@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <stdexcept>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -15,7 +16,7 @@
 #include "brdfcl/error.hpp"
 #include "commands.hpp"
 #include "host/src/eval/workload.hpp"
-#include "peers.hpp"
+#include "peers_module.hpp"
 
 namespace brdfcl::cli {
 
@@ -134,6 +135,8 @@ void addBenchCommand(CLI::App& app) {
       pairs = readPairs(args->pairs);  // before the clock: file I/O is no part of the kernel's time
       args->n = pairs.size() / 6;
     }
+    // The peers' module, when the run compares with them, before any work: a build without it fails at once.
+    const peers::ModuleTable* peerModule = pairs.empty() ? &peersModule() : nullptr;
     const auto t0 = Clock::now();
     Runtime rt(args->device);
     bench::Bench b(rt, args->lobe, args->n, 1, args->materials);
@@ -168,12 +171,15 @@ void addBenchCommand(CLI::App& app) {
       }
       return;
     }
-    const auto runPeer = [&](peers::Flavor f) { peers::run(f, b.workload().name, b.peerInput()); };
-    runPeer(peers::Flavor::OpenMPSimd);
-    const double simd = medianSeconds(args->runs, [&] { runPeer(peers::Flavor::OpenMPSimd); });
+    const auto runPeer = [&](bool simd) {
+      if (!peerModule->run(simd, b.workload().name.c_str(), &b.peerInput()))
+        throw std::logic_error("the C++ peers have no workload '" + b.workload().name + "'");
+    };
+    runPeer(true);
+    const double simd = medianSeconds(args->runs, [&] { runPeer(true); });
     const double simdDeviation = b.peerDeviation();
-    const double scalar = medianSeconds(std::min(args->runs, 3), [&] { runPeer(peers::Flavor::Scalar); });
-    const double triad = peers::streamTriadBytesPerSecond(std::size_t(1) << 25, 5);
+    const double scalar = medianSeconds(std::min(args->runs, 3), [&] { runPeer(false); });
+    const double triad = peerModule->streamTriadBytesPerSecond(std::size_t(1) << 25, 5);
 
     // End to end through the public API for a small batch: what a second `eval` of 1K pays.
     const auto w = bench::makeWorkload(args->lobe, 1, args->materials);
@@ -221,7 +227,7 @@ void addBenchCommand(CLI::App& app) {
     fmt::print("  {:<28}{:>12.1f} Msamples/s   (device time of the launch, without copies)\n", "launch alone",
                n / launch / 1e6);
     fmt::print("  {:<28}{:>12.1f} Msamples/s   kernel is {:.2f}x\n", "scalar C++ loop", spsScalar / 1e6, sps / spsScalar);
-    fmt::print("  {:<28}{:>12.1f} Msamples/s   kernel is {:.2f}x\n", fmt::format("OpenMP-SIMD loop ({} threads)", peers::threads()), spsSimd / 1e6,
+    fmt::print("  {:<28}{:>12.1f} Msamples/s   kernel is {:.2f}x\n", fmt::format("OpenMP-SIMD loop ({} threads)", peerModule->threads()), spsSimd / 1e6,
                sps / spsSimd);
     fmt::print("  {:<28}{:>12.1f} Msamples/s   kernel is {:.0f}% of it ({:.1f} GB/s triad, {:.0f} B/sample)\n",
                "memory bound", bound / 1e6, 100 * sps / bound, triad / 1e9, bench::kBytesPerSample);
