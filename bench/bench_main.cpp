@@ -17,6 +17,7 @@
 #include "brdfcl/render.hpp"
 #include "brdfcl/stream.hpp"
 #include "host/src/eval/workload.hpp"
+#include "host/src/io/output.hpp"
 #include "peers.hpp"
 
 using namespace brdfcl;
@@ -157,7 +158,7 @@ void BM_EvalFile(benchmark::State& state, FileMode mode) {
     if (csv) {
       f << "material,Lx,Ly,Lz,Vx,Vy,Vz\n";
     } else {
-      f << bench::npyFloatHeader(std::size_t(n), 7);
+      f << detail::npyHeader(std::size_t(n), 7);
     }
     std::mt19937 rng(1);
     std::uniform_real_distribution<float> u(-1.0f, 1.0f);

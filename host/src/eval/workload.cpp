@@ -25,14 +25,6 @@ struct Rng {
 };
 }  // namespace
 
-std::string npyFloatHeader(std::size_t rows, std::size_t cols) {
-  std::string dict = "{'descr': '<f4', 'fortran_order': False, 'shape': (" + std::to_string(rows) + ", " +
-                     std::to_string(cols) + "), }";
-  dict.append(63 - (10 + dict.size()) % 64, ' ');
-  dict += '\n';
-  return std::string("\x93NUMPY\x01\x00", 8) + char(dict.size() & 0xff) + char(dict.size() >> 8) + dict;
-}
-
 const std::vector<std::string>& workloadNames() {
   static const std::vector<std::string> names = {"sheen", "specular", "clearcoat", "all"};
   return names;

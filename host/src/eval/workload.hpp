@@ -26,10 +26,6 @@ struct Workload {
 constexpr std::size_t kDefaultMaterials = 256;
 Workload makeWorkload(const std::string& name, std::uint64_t seed = 1, std::size_t materials = kDefaultMaterials);
 
-// The header of a float32 C-order NPY of `rows` x `cols`, padded to a multiple of 64 bytes: the
-// sample files the file benchmarks write (rows of material, L.xyz, V.xyz are 7 columns).
-std::string npyFloatHeader(std::size_t rows, std::size_t cols);
-
 // Bytes a sample moves: L and V (24), the material index (4) and RGB out (12).
 constexpr double kBytesPerSample = 40.0;
 
