@@ -74,7 +74,7 @@ PreparedRender prepareRender(const RenderJob& job, FrameJob kind = FrameJob::Ren
 // The devices a render runs on: one Runtime (the Python module) or a DeviceSet (`--device 0,2`).
 class RenderDevices {
  public:
-  RenderDevices(Runtime& rt) : runtime_(&rt) {}        // NOLINT: either converts implicitly
+  RenderDevices(Runtime& rt) : runtime_(&rt) {}              // NOLINT: implicit, so callers pass either
   RenderDevices(DeviceSet& devices) : devices_(&devices) {}  // NOLINT
   Runtime& first();
   std::unique_ptr<Shader> shader(const Scene& scene, const EvalOptions& model) const;
