@@ -8,13 +8,9 @@
 
 #include "brdfcl/demo_asset.hpp"
 #include "brdfcl/error.hpp"
-#include "brdfcl/frame_budget.hpp"
-#include "brdfcl/gltf_frame.hpp"
 #include "brdfcl/image.hpp"
-#include "brdfcl/image_diff.hpp"
 #include "brdfcl/io.hpp"
 #include "commands.hpp"
-#include "host/src/io/output.hpp"
 #include "render_options.hpp"
 
 namespace brdfcl::cli {

@@ -1,21 +1,12 @@
 // `brdfcl gbuffer`: a G-buffer EXR of the built-in spheres or of a glTF asset, ray-cast at pixel
 // centres (docs/gbuffer.md).
-#include <cstdio>
-#include <filesystem>
 #include <memory>
 #include <optional>
 
-#include <fmt/format.h>
-
-#include "brdfcl/demo_asset.hpp"
 #include "brdfcl/error.hpp"
 #include "brdfcl/frame_budget.hpp"
-#include "brdfcl/gltf_frame.hpp"
-#include "brdfcl/image.hpp"
-#include "brdfcl/image_diff.hpp"
 #include "brdfcl/io.hpp"
 #include "commands.hpp"
-#include "host/src/io/output.hpp"
 #include "render_options.hpp"
 
 namespace brdfcl::cli {

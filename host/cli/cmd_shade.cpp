@@ -1,17 +1,12 @@
 // `brdfcl shade`: deferred shading of any G-buffer under a scene's lights and environment. Under
 // mpirun each rank shades a band of rows and rank 0 gathers them and writes the files.
 #include <cstdio>
-#include <filesystem>
 #include <memory>
 
 #include <fmt/format.h>
 
-#include "brdfcl/demo_asset.hpp"
 #include "brdfcl/error.hpp"
-#include "brdfcl/frame_budget.hpp"
-#include "brdfcl/gltf_frame.hpp"
 #include "brdfcl/image.hpp"
-#include "brdfcl/image_diff.hpp"
 #include "brdfcl/io.hpp"
 #include "commands.hpp"
 #include "host/src/io/output.hpp"
