@@ -14,7 +14,8 @@
 
 #include "brdfcl/runtime.hpp"
 #include "tests/unit/process.hpp"
-#include "workload.hpp"
+#include "host/src/eval/workload.hpp"
+#include "host/src/io/output.hpp"
 
 namespace fs = std::filesystem;
 
@@ -61,7 +62,7 @@ struct Files {
         f.write(line, len);
       }
     } else {
-      f << brdfcl::bench::npyFloatHeader(std::size_t(n), 7);
+      f << brdfcl::detail::npyHeader(std::size_t(n), 7);
       std::vector<float> rows(7 * (std::size_t(1) << 16));
       for (std::size_t first = 0; first < n; first += rows.size() / 7) {
         const std::size_t count = std::min(rows.size() / 7, n - first);

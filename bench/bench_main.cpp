@@ -16,7 +16,9 @@
 #include "brdfcl/arrays.hpp"
 #include "brdfcl/render.hpp"
 #include "brdfcl/stream.hpp"
-#include "workload.hpp"
+#include "host/src/eval/workload.hpp"
+#include "host/src/io/output.hpp"
+#include "peers.hpp"
 
 using namespace brdfcl;
 
@@ -59,8 +61,8 @@ void BM_Eval(benchmark::State& state, std::string lobe) {
 void BM_Peer(benchmark::State& state, std::string lobe, peers::Flavor flavor) {
   const std::size_t n = std::size_t(state.range(0));
   auto& b = benchFor(lobe, n);
-  b.runPeer(flavor);
-  for (auto _ : state) b.runPeer(flavor);
+  peers::run(flavor, lobe, b.peerInput());
+  for (auto _ : state) peers::run(flavor, lobe, b.peerInput());
   report(state, n);
   b.runKernel();
   state.counters["max_rel_dev_vs_kernel"] = b.peerDeviation();
@@ -156,7 +158,7 @@ void BM_EvalFile(benchmark::State& state, FileMode mode) {
     if (csv) {
       f << "material,Lx,Ly,Lz,Vx,Vy,Vz\n";
     } else {
-      f << bench::npyFloatHeader(std::size_t(n), 7);
+      f << detail::npyHeader(std::size_t(n), 7);
     }
     std::mt19937 rng(1);
     std::uniform_real_distribution<float> u(-1.0f, 1.0f);

@@ -1,6 +1,6 @@
 // One peer loop: compiled once per (workload, flavour) by CMake with the workload's -D options
 // (the same defines the kernel gets) and the flavour's compiler flags. PEER_FN names the entry.
-#include "opencl_c.hpp"
+#include "kernels/common/host_compat.h"
 #define BRDFCL_W 1
 #include "kernels/brdf/material.h"
 #include "peers.hpp"

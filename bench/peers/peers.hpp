@@ -6,20 +6,9 @@
 #include <cstdint>
 #include <string>
 
-#include "kernels/common/material_layout.h"
+#include "host/src/eval/peer_input.hpp"
 
 namespace brdfcl::peers {
-
-// What the kernel reads and writes, as SoaBatch lays it out.
-struct Input {
-  const float* dir[6];  // Lx Ly Lz Vx Vy Vz
-  const std::uint32_t* material;
-  const brdfcl_material* materials;
-  const float* sheenE;
-  int sheenESize;
-  float* out[3];
-  std::size_t count;
-};
 
 enum class Flavor { Scalar, OpenMPSimd };
 

@@ -8,13 +8,15 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <stdexcept>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "brdfcl/error.hpp"
 #include "commands.hpp"
-#include "workload.hpp"
+#include "host/src/eval/workload.hpp"
+#include "peers_module.hpp"
 
 namespace brdfcl::cli {
 
@@ -68,6 +70,158 @@ nlohmann::json materialJson(const MaterialParams& m) {
           {"anisotropy_strength", m.anisotropyStrength},
           {"anisotropy_rotation", m.anisotropyRotation}};
 }
+// --profile P: the engine profile and spec timed side by side, interleaved.
+void benchProfile(const BenchArgs& a, Profile profile) {
+  Runtime rt(a.device);
+  bench::Bench spec(rt, a.lobe, a.n, 1, a.materials);
+  bench::Bench engine(rt, a.lobe, a.n, 1, a.materials, profile);
+  spec.runKernel();  // warm-up and program builds
+  engine.runKernel();
+  // Interleaved runs: both sides see the same machine state, so the ratio is what counts.
+  std::vector<double> ts, te;
+  for (int r = 0; r < a.runs; ++r) {
+    ts.push_back(medianSeconds(1, [&] { spec.runKernel(); }));
+    te.push_back(medianSeconds(1, [&] { engine.runKernel(); }));
+  }
+  std::sort(ts.begin(), ts.end());
+  std::sort(te.begin(), te.end());
+  const double sSpec = double(a.n) / ts[ts.size() / 2], sEngine = double(a.n) / te[te.size() / 2];
+  if (a.json) {
+    const nlohmann::json j = {{"profile", a.profile},
+                              {"lobe", a.lobe},
+                              {"n", a.n},
+                              {"materials", a.materials},
+                              {"runs", a.runs},
+                              {"device", rt.info().name},
+                              {"spec_samples_per_second", sSpec},
+                              {"profile_samples_per_second", sEngine},
+                              {"profile_over_spec", sEngine / sSpec}};
+    std::printf("%s\n", j.dump(2).c_str());
+  } else {
+    fmt::print("brdfcl bench: lobe {}, {} samples over {} materials, median of {} interleaved runs, on {}\n",
+               a.lobe, a.n, a.materials, a.runs, rt.info().name);
+    fmt::print("  {:<28}{:>12.1f} Msamples/s\n", "--profile spec", sSpec / 1e6);
+    fmt::print("  {:<28}{:>12.1f} Msamples/s   {:.2f}x spec's speed\n", "--profile " + a.profile,
+               sEngine / 1e6, sEngine / sSpec);
+  }
+}
+
+// --pairs FILE: the kernel alone on the outside peer's pairs; it times its own side and needs the
+// kernel's figure and the material.
+void reportPairs(const BenchArgs& a, Runtime& rt, const bench::Bench& b, double kernel, double launch, double firstRun) {
+  const double sps = double(a.n) / kernel;
+  if (a.json) {
+    const nlohmann::json j = {{"samples_per_second", sps},
+                              {"n", a.n},
+                              {"lobe", a.lobe},
+                              {"materials", a.materials},
+                              {"device", rt.info().name},
+                              {"runs", a.runs},
+                              {"kernel_seconds_median", kernel},
+                              {"first_run_seconds", firstRun},
+                              {"launch_seconds_median", launch},
+                              {"launch_samples_per_second", double(a.n) / launch},
+                              {"material0", materialJson(b.workload().materials[0])}};
+    std::printf("%s\n", j.dump(2).c_str());
+  } else {
+    fmt::print("brdfcl bench: lobe {}, {} pairs from '{}' over {} materials, median of {} runs, on {}\n",
+               a.lobe, a.n, a.pairs, a.materials, a.runs, rt.info().name);
+    fmt::print("  {:<28}{:>12.1f} Msamples/s\n", "OpenCL kernel", sps / 1e6);
+    fmt::print("  {:<28}{:>12.1f} Msamples/s\n", "launch alone (device time)", double(a.n) / launch / 1e6);
+  }
+}
+
+// The kernel, and unless --pairs, its ratios to the C++ peers, the memory bound and a small eval.
+void benchKernel(BenchArgs& a) {
+  std::vector<float> pairs;
+  if (!a.pairs.empty()) {
+    pairs = readPairs(a.pairs);  // before the clock: file I/O is no part of the kernel's time
+    a.n = pairs.size() / 6;
+  }
+  // The peers' module, when the run compares with them, before any work: a build without it fails at once.
+  const peers::ModuleTable* peerModule = pairs.empty() ? &peersModule() : nullptr;
+  const auto t0 = Clock::now();
+  Runtime rt(a.device);
+  bench::Bench b(rt, a.lobe, a.n, 1, a.materials);
+  if (!pairs.empty()) b.setDirections(pairs);
+  b.runKernel();  // warm-up; also builds (or loads from PoCL's cache) the program
+  const double firstRun = std::chrono::duration<double>(Clock::now() - t0).count();
+  // The launch alone, from its profiling event: on a GPU the run also copies the result back
+  // to the host, which can take longer than the kernel.
+  std::vector<double> launches;
+  const double kernel = medianSeconds(a.runs, [&] {
+    b.runKernel();
+    launches.push_back(b.batch().lastKernelSeconds());
+  });
+  std::sort(launches.begin(), launches.end());
+  const double launch = launches[launches.size() / 2];
+  if (!pairs.empty()) {
+    reportPairs(a, rt, b, kernel, launch, firstRun);
+    return;
+  }
+  const auto runPeer = [&](bool simd) {
+    if (!peerModule->run(simd, b.workload().name.c_str(), &b.peerInput()))
+      throw std::logic_error("the C++ peers have no workload '" + b.workload().name + "'");
+  };
+  runPeer(true);
+  const double simd = medianSeconds(a.runs, [&] { runPeer(true); });
+  const double simdDeviation = b.peerDeviation();
+  const double scalar = medianSeconds(std::min(a.runs, 3), [&] { runPeer(false); });
+  const double triad = peerModule->streamTriadBytesPerSecond(std::size_t(1) << 25, 5);
+
+  // End to end through the public API for a small batch: what a second `eval` of 1K pays.
+  const auto w = bench::makeWorkload(a.lobe, 1, a.materials);
+  Samples small;
+  for (int i = 0; i < 1024; ++i) {
+    const float z = 0.05f + 0.9f * float(i) / 1024.0f, s = std::sqrt(1 - z * z);
+    small.L.insert(small.L.end(), {s, 0.0f, z});
+    small.V.insert(small.V.end(), {-s * 0.6f, s * 0.8f, z});
+    small.material.push_back(std::uint32_t(std::size_t(i) % a.materials));
+  }
+  Evaluator ev(rt, w.options);
+  ev.evaluate(w.materials, small);
+  const double e2e1k = medianSeconds(a.runs, [&] { ev.evaluate(w.materials, small); });
+
+  const double n = double(a.n);
+  const double sps = n / kernel, spsSimd = n / simd, spsScalar = n / scalar;
+  const double bound = triad / bench::kBytesPerSample;
+  if (a.json) {
+    nlohmann::json j = {
+        {"samples_per_second", sps},
+        {"n", a.n},
+        {"lobe", a.lobe},
+        {"materials", a.materials},
+        {"device", rt.info().name},
+        {"runs", a.runs},
+        {"kernel_seconds_median", kernel},
+        {"launch_seconds_median", launch},
+        {"launch_samples_per_second", n / launch},
+        {"first_run_seconds", firstRun},
+        {"eval_1024_seconds", e2e1k},
+        {"bytes_per_sample", bench::kBytesPerSample},
+        {"peers",
+         {{"scalar_cpp_samples_per_second", spsScalar},
+          {"openmp_simd_samples_per_second", spsSimd},
+          {"openmp_simd_max_rel_deviation", simdDeviation},
+          {"stream_triad_bytes_per_second", triad},
+          {"memory_bound_samples_per_second", bound}}},
+        {"ratios", {{"vs_scalar_cpp", sps / spsScalar}, {"vs_openmp_simd", sps / spsSimd}, {"of_memory_bound", sps / bound}}}};
+    std::printf("%s\n", j.dump(2).c_str());
+    return;
+  }
+  fmt::print("brdfcl bench: lobe {}, {} samples over {} materials, median of {} runs, on {}\n", a.lobe,
+             a.n, a.materials, a.runs, rt.info().name);
+  fmt::print("  {:<28}{:>12.1f} Msamples/s\n", "OpenCL kernel", sps / 1e6);
+  fmt::print("  {:<28}{:>12.1f} Msamples/s   (device time of the launch, without copies)\n", "launch alone",
+             n / launch / 1e6);
+  fmt::print("  {:<28}{:>12.1f} Msamples/s   kernel is {:.2f}x\n", "scalar C++ loop", spsScalar / 1e6, sps / spsScalar);
+  fmt::print("  {:<28}{:>12.1f} Msamples/s   kernel is {:.2f}x\n", fmt::format("OpenMP-SIMD loop ({} threads)", peerModule->threads()), spsSimd / 1e6,
+             sps / spsSimd);
+  fmt::print("  {:<28}{:>12.1f} Msamples/s   kernel is {:.0f}% of it ({:.1f} GB/s triad, {:.0f} B/sample)\n",
+             "memory bound", bound / 1e6, 100 * sps / bound, triad / 1e9, bench::kBytesPerSample);
+  fmt::print("  first run (device open, program build or cache load, warm-up): {:.3f} s\n", firstRun);
+  fmt::print("  1,024 samples end to end through Evaluator::evaluate (warm): {:.2f} ms\n", e2e1k * 1e3);
+}
 }  // namespace
 
 void addBenchCommand(CLI::App& app) {
@@ -94,137 +248,10 @@ void addBenchCommand(CLI::App& app) {
       throw Error(fmt::format("--materials {} is out of range; use 1 to 1048576", args->materials));
     if (profile != Profile::Spec) {
       if (!args->pairs.empty()) throw Error("--pairs and --profile are separate measurements; give one");
-      Runtime rt(args->device);
-      bench::Bench spec(rt, args->lobe, args->n, 1, args->materials);
-      bench::Bench engine(rt, args->lobe, args->n, 1, args->materials, profile);
-      spec.runKernel();  // warm-up and program builds
-      engine.runKernel();
-      // Interleaved runs: both sides see the same machine state, so the ratio is what counts.
-      std::vector<double> ts, te;
-      for (int r = 0; r < args->runs; ++r) {
-        ts.push_back(medianSeconds(1, [&] { spec.runKernel(); }));
-        te.push_back(medianSeconds(1, [&] { engine.runKernel(); }));
-      }
-      std::sort(ts.begin(), ts.end());
-      std::sort(te.begin(), te.end());
-      const double sSpec = double(args->n) / ts[ts.size() / 2], sEngine = double(args->n) / te[te.size() / 2];
-      if (args->json) {
-        const nlohmann::json j = {{"profile", args->profile},
-                                  {"lobe", args->lobe},
-                                  {"n", args->n},
-                                  {"materials", args->materials},
-                                  {"runs", args->runs},
-                                  {"device", rt.info().name},
-                                  {"spec_samples_per_second", sSpec},
-                                  {"profile_samples_per_second", sEngine},
-                                  {"profile_over_spec", sEngine / sSpec}};
-        std::printf("%s\n", j.dump(2).c_str());
-      } else {
-        fmt::print("brdfcl bench: lobe {}, {} samples over {} materials, median of {} interleaved runs, on {}\n",
-                   args->lobe, args->n, args->materials, args->runs, rt.info().name);
-        fmt::print("  {:<28}{:>12.1f} Msamples/s\n", "--profile spec", sSpec / 1e6);
-        fmt::print("  {:<28}{:>12.1f} Msamples/s   {:.2f}x spec's speed\n", "--profile " + args->profile,
-                   sEngine / 1e6, sEngine / sSpec);
-      }
+      benchProfile(*args, profile);
       return;
     }
-    std::vector<float> pairs;
-    if (!args->pairs.empty()) {
-      pairs = readPairs(args->pairs);  // before the clock: file I/O is no part of the kernel's time
-      args->n = pairs.size() / 6;
-    }
-    const auto t0 = Clock::now();
-    Runtime rt(args->device);
-    bench::Bench b(rt, args->lobe, args->n, 1, args->materials);
-    if (!pairs.empty()) b.setDirections(pairs);
-    b.runKernel();  // warm-up; also builds (or loads from PoCL's cache) the program
-    const double firstRun = std::chrono::duration<double>(Clock::now() - t0).count();
-    // The launch alone, from its profiling event: on a GPU the run also copies the result back
-    // to the host, which can take longer than the kernel.
-    std::vector<double> launches;
-    const double kernel = medianSeconds(args->runs, [&] {
-      b.runKernel();
-      launches.push_back(b.batch().lastKernelSeconds());
-    });
-    std::sort(launches.begin(), launches.end());
-    const double launch = launches[launches.size() / 2];
-    if (!pairs.empty()) {
-      // The outside peer times its own side; it needs the kernel's figure and the material.
-      const double sps = double(args->n) / kernel;
-      if (args->json) {
-        const nlohmann::json j = {{"samples_per_second", sps},        {"n", args->n},
-                                  {"lobe", args->lobe},               {"materials", args->materials},
-                                  {"device", rt.info().name},         {"runs", args->runs},
-                                  {"kernel_seconds_median", kernel},  {"first_run_seconds", firstRun},
-                                  {"launch_seconds_median", launch},  {"launch_samples_per_second", double(args->n) / launch},
-                                  {"material0", materialJson(b.workload().materials[0])}};
-        std::printf("%s\n", j.dump(2).c_str());
-      } else {
-        fmt::print("brdfcl bench: lobe {}, {} pairs from '{}' over {} materials, median of {} runs, on {}\n",
-                   args->lobe, args->n, args->pairs, args->materials, args->runs, rt.info().name);
-        fmt::print("  {:<28}{:>12.1f} Msamples/s\n", "OpenCL kernel", sps / 1e6);
-        fmt::print("  {:<28}{:>12.1f} Msamples/s\n", "launch alone (device time)", double(args->n) / launch / 1e6);
-      }
-      return;
-    }
-    b.runPeer(peers::Flavor::OpenMPSimd);
-    const double simd = medianSeconds(args->runs, [&] { b.runPeer(peers::Flavor::OpenMPSimd); });
-    const double simdDeviation = b.peerDeviation();
-    const double scalar = medianSeconds(std::min(args->runs, 3), [&] { b.runPeer(peers::Flavor::Scalar); });
-    const double triad = peers::streamTriadBytesPerSecond(std::size_t(1) << 25, 5);
-
-    // End to end through the public API for a small batch: what a second `eval` of 1K pays.
-    const auto w = bench::makeWorkload(args->lobe, 1, args->materials);
-    Samples small;
-    for (int i = 0; i < 1024; ++i) {
-      const float z = 0.05f + 0.9f * float(i) / 1024.0f, s = std::sqrt(1 - z * z);
-      small.L.insert(small.L.end(), {s, 0.0f, z});
-      small.V.insert(small.V.end(), {-s * 0.6f, s * 0.8f, z});
-      small.material.push_back(std::uint32_t(std::size_t(i) % args->materials));
-    }
-    Evaluator ev(rt, w.options);
-    ev.evaluate(w.materials, small);
-    const double e2e1k = medianSeconds(args->runs, [&] { ev.evaluate(w.materials, small); });
-
-    const double n = double(args->n);
-    const double sps = n / kernel, spsSimd = n / simd, spsScalar = n / scalar;
-    const double bound = triad / bench::kBytesPerSample;
-    if (args->json) {
-      nlohmann::json j = {
-          {"samples_per_second", sps},
-          {"n", args->n},
-          {"lobe", args->lobe},
-          {"materials", args->materials},
-          {"device", rt.info().name},
-          {"runs", args->runs},
-          {"kernel_seconds_median", kernel},
-          {"launch_seconds_median", launch},
-          {"launch_samples_per_second", n / launch},
-          {"first_run_seconds", firstRun},
-          {"eval_1024_seconds", e2e1k},
-          {"bytes_per_sample", bench::kBytesPerSample},
-          {"peers",
-           {{"scalar_cpp_samples_per_second", spsScalar},
-            {"openmp_simd_samples_per_second", spsSimd},
-            {"openmp_simd_max_rel_deviation", simdDeviation},
-            {"stream_triad_bytes_per_second", triad},
-            {"memory_bound_samples_per_second", bound}}},
-          {"ratios", {{"vs_scalar_cpp", sps / spsScalar}, {"vs_openmp_simd", sps / spsSimd}, {"of_memory_bound", sps / bound}}}};
-      std::printf("%s\n", j.dump(2).c_str());
-      return;
-    }
-    fmt::print("brdfcl bench: lobe {}, {} samples over {} materials, median of {} runs, on {}\n", args->lobe,
-               args->n, args->materials, args->runs, rt.info().name);
-    fmt::print("  {:<28}{:>12.1f} Msamples/s\n", "OpenCL kernel", sps / 1e6);
-    fmt::print("  {:<28}{:>12.1f} Msamples/s   (device time of the launch, without copies)\n", "launch alone",
-               n / launch / 1e6);
-    fmt::print("  {:<28}{:>12.1f} Msamples/s   kernel is {:.2f}x\n", "scalar C++ loop", spsScalar / 1e6, sps / spsScalar);
-    fmt::print("  {:<28}{:>12.1f} Msamples/s   kernel is {:.2f}x\n", fmt::format("OpenMP-SIMD loop ({} threads)", peers::threads()), spsSimd / 1e6,
-               sps / spsSimd);
-    fmt::print("  {:<28}{:>12.1f} Msamples/s   kernel is {:.0f}% of it ({:.1f} GB/s triad, {:.0f} B/sample)\n",
-               "memory bound", bound / 1e6, 100 * sps / bound, triad / 1e9, bench::kBytesPerSample);
-    fmt::print("  first run (device open, program build or cache load, warm-up): {:.3f} s\n", firstRun);
-    fmt::print("  1,024 samples end to end through Evaluator::evaluate (warm): {:.2f} ms\n", e2e1k * 1e3);
+    benchKernel(*args);
   });
 }
 

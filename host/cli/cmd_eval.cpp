@@ -94,7 +94,7 @@ void evalAcrossRanks(const EvalArgs& args, const EvalOptions& o) {
   });
   std::uint64_t total = 0;
   session.exclusivePrefixSum(rows, &total);
-  const std::string header = format == ".npy" ? detail::npyHeader("(" + std::to_string(total) + ", 3)") : "r,g,b\n";
+  const std::string header = format == ".npy" ? detail::npyHeader(total, 3) : "r,g,b\n";
   mpi::writeShared(args.out, header, part, bytes);
 }
 }  // namespace

@@ -13,7 +13,10 @@ namespace brdfcl::cli {
 void addDevicesCommand(CLI::App& app);
 void addEvalCommand(CLI::App& app);
 void addAlbedoCommand(CLI::App& app);
-void addRenderCommands(CLI::App& app);
+void addGbufferCommand(CLI::App& app);
+void addShadeCommand(CLI::App& app);
+void addRenderCommand(CLI::App& app);
+void addDemoCommand(CLI::App& app);
 void addBenchCommand(CLI::App& app);
 void addLutCommand(CLI::App& app);
 void addDiffCommand(CLI::App& app);

@@ -94,7 +94,10 @@ int main(int argc, char** argv) {
   brdfcl::cli::addDevicesCommand(app);
   brdfcl::cli::addEvalCommand(app);
   brdfcl::cli::addAlbedoCommand(app);
-  brdfcl::cli::addRenderCommands(app);
+  brdfcl::cli::addGbufferCommand(app);
+  brdfcl::cli::addShadeCommand(app);
+  brdfcl::cli::addRenderCommand(app);
+  brdfcl::cli::addDemoCommand(app);
   brdfcl::cli::addBenchCommand(app);
   brdfcl::cli::addLutCommand(app);
   brdfcl::cli::addDiffCommand(app);

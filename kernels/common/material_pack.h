@@ -6,17 +6,8 @@
 
 #include "common/material_layout.h"
 
-#ifdef __OPENCL_VERSION__
-#define BRDFCL_PACK_FN static inline
-#define BRDFCL_MAXF fmax
-#define BRDFCL_COSF cos
-#define BRDFCL_SINF sin
-#else
-#include <cmath>
-#define BRDFCL_PACK_FN static inline
-#define BRDFCL_MAXF std::fmax
-#define BRDFCL_COSF std::cos
-#define BRDFCL_SINF std::sin
+#ifndef __OPENCL_VERSION__
+#include "common/host_compat.h"
 #endif
 
 typedef struct brdfcl_material_params {
@@ -29,9 +20,9 @@ typedef struct brdfcl_material_params {
   float ior;                                 /* KHR_materials_ior; engine profiles only */
 } brdfcl_material_params;
 
-BRDFCL_PACK_FN float brdfcl_max3(const float* c) { return BRDFCL_MAXF(c[0], BRDFCL_MAXF(c[1], c[2])); }
+static inline float brdfcl_max3(const float* c) { return fmax(c[0], fmax(c[1], c[2])); }
 
-BRDFCL_PACK_FN brdfcl_material brdfcl_pack_material(brdfcl_material_params m) {
+static inline brdfcl_material brdfcl_pack_material(brdfcl_material_params m) {
   brdfcl_material p;
   const float alpha = m.roughness * m.roughness;
   const float s2 = m.anisotropy_strength * m.anisotropy_strength;
@@ -45,39 +36,39 @@ BRDFCL_PACK_FN brdfcl_material brdfcl_pack_material(brdfcl_material_params m) {
   p.ior_f0 = 0.04f;
   p.aniso_strength = m.anisotropy_strength;
   p.metallic = m.metallic;
-  p.alpha = BRDFCL_MAXF(alpha, BRDFCL_MIN_ALPHA);
-  p.alpha_t = BRDFCL_MAXF(alpha * (1.0f - s2) + s2, BRDFCL_MIN_ALPHA); /* 002: mix(alpha, 1, strength^2) */
-  p.aniso_cos = BRDFCL_COSF(m.anisotropy_rotation);
-  p.aniso_sin = BRDFCL_SINF(m.anisotropy_rotation);
+  p.alpha = fmax(alpha, BRDFCL_MIN_ALPHA);
+  p.alpha_t = fmax(alpha * (1.0f - s2) + s2, BRDFCL_MIN_ALPHA); /* 002: mix(alpha, 1, strength^2) */
+  p.aniso_cos = cos(m.anisotropy_rotation);
+  p.aniso_sin = sin(m.anisotropy_rotation);
   if (m.draft) {
     /* 001: sheen roughness is the material roughness; (1 - reflectance) weights the additive
        lobe, reflectance = max3(mix(0.04, baseColor, metallic)); no albedo scaling. */
     float f0[3];
     for (int i = 0; i < 3; ++i) f0[i] = 0.04f * (1.0f - m.metallic) + m.base_color[i] * m.metallic;
     p.sheen_max = 0.0f;
-    p.sheen_alpha = BRDFCL_MAXF(alpha, BRDFCL_MIN_SHEEN_ALPHA);
+    p.sheen_alpha = fmax(alpha, BRDFCL_MIN_SHEEN_ALPHA);
     p.sheen_roughness = m.roughness;
     p.sheen_weight = 1.0f - brdfcl_max3(f0);
     p.flags = BRDFCL_MAT_DRAFT_SHEEN | (brdfcl_max3(m.sheen_color) > 0.0f ? BRDFCL_MAT_SHEEN : 0u);
   } else {
     p.sheen_max = brdfcl_max3(m.sheen_color);
-    p.sheen_alpha = BRDFCL_MAXF(m.sheen_roughness * m.sheen_roughness, BRDFCL_MIN_SHEEN_ALPHA);
+    p.sheen_alpha = fmax(m.sheen_roughness * m.sheen_roughness, BRDFCL_MIN_SHEEN_ALPHA);
     p.sheen_roughness = m.sheen_roughness;
     p.sheen_weight = 1.0f;
     p.flags = p.sheen_max > 0.0f ? BRDFCL_MAT_SHEEN : 0u;
   }
   p.clearcoat = m.clearcoat;
-  p.clearcoat_alpha = BRDFCL_MAXF(m.clearcoat_roughness * m.clearcoat_roughness, BRDFCL_MIN_ALPHA);
+  p.clearcoat_alpha = fmax(m.clearcoat_roughness * m.clearcoat_roughness, BRDFCL_MIN_ALPHA);
   return p;
 }
 
-BRDFCL_PACK_FN float brdfcl_clampf(float x, float lo, float hi) { return BRDFCL_MAXF(lo, x < hi ? x : hi); }
-BRDFCL_PACK_FN float brdfcl_mixf(float a, float b, float t) { return a * (1.0f - t) + b * t; }
+static inline float brdfcl_clampf(float x, float lo, float hi) { return fmax(lo, x < hi ? x : hi); }
+static inline float brdfcl_mixf(float a, float b, float t) { return a * (1.0f - t) + b * t; }
 
 /* The same parameters decoded as an engine decodes them (docs/profiles.md): its floors and
    clamps instead of brdfcl's, its roughness remaps, its F0 from the IOR. No engine reads the
    draft sheen, so a draft material has none here. */
-BRDFCL_PACK_FN brdfcl_material brdfcl_pack_material_profile(brdfcl_material_params m, int profile) {
+static inline brdfcl_material brdfcl_pack_material_profile(brdfcl_material_params m, int profile) {
   brdfcl_material p = brdfcl_pack_material(m);
   if (profile == BRDFCL_PROFILE_SPEC) return p;
   if (m.draft) {
@@ -101,7 +92,7 @@ BRDFCL_PACK_FN brdfcl_material brdfcl_pack_material_profile(brdfcl_material_para
     if (m.anisotropy) p.flags |= BRDFCL_MAT_ANISOTROPY;
     p.alpha = m.anisotropy ? brdfcl_clampf(a, 0.001f, 1.0f) : a;
     p.alpha_t = brdfcl_mixf(a, 1.0f, s2);
-    const float rs1 = BRDFCL_MAXF(rs, 1e-6f);
+    const float rs1 = fmax(rs, 1e-6f);
     p.sheen_alpha = rs1 * rs1;
     p.sheen_roughness = rs;
     p.clearcoat_alpha = rc * rc;
@@ -118,21 +109,21 @@ BRDFCL_PACK_FN brdfcl_material brdfcl_pack_material_profile(brdfcl_material_para
     p.ior_f0 = f0_ior < 1.0f ? f0_ior : 1.0f;
   } else if (profile == BRDFCL_PROFILE_FILAMENT) {
     if (m.anisotropy) p.flags |= BRDFCL_MAT_ANISOTROPY; /* gltfio's MATERIAL_HAS_ANISOTROPY */
-    const float rho = brdfcl_clampf(brdfcl_mixf(r, BRDFCL_MAXF(r, rc), m.clearcoat), 0.045f, 1.0f), a = rho * rho;
+    const float rho = brdfcl_clampf(brdfcl_mixf(r, fmax(r, rc), m.clearcoat), 0.045f, 1.0f), a = rho * rho;
     p.roughness = rho;
-    p.alpha_t = BRDFCL_MAXF(a * (1.0f + s), 0.002025f); /* Kulla 2017, A = strength */
-    p.alpha = BRDFCL_MAXF(a * (1.0f - s), 0.002025f);
+    p.alpha_t = fmax(a * (1.0f + s), 0.002025f); /* Kulla 2017, A = strength */
+    p.alpha = fmax(a * (1.0f - s), 0.002025f);
     const float rhos = brdfcl_clampf(rs, 0.045f, 1.0f);
     p.sheen_alpha = rhos * rhos;
     p.sheen_roughness = rhos;
     const float rhoc = brdfcl_clampf(rc, 0.045f, 1.0f);
     p.clearcoat_alpha = rhoc * rhoc;
-    const float iorf = BRDFCL_MAXF(ior, 1.0f);
+    const float iorf = fmax(ior, 1.0f);
     p.ior_f0 = ((iorf - 1.0f) / (iorf + 1.0f)) * ((iorf - 1.0f) / (iorf + 1.0f));
   } else if (profile == BRDFCL_PROFILE_BABYLON) {
     const float ag = r * r + 0.0005f;
-    p.alpha = BRDFCL_MAXF(ag, 0.0005f);
-    p.alpha_t = BRDFCL_MAXF(brdfcl_mixf(ag, 1.0f, s2), 0.0005f);
+    p.alpha = fmax(ag, 0.0005f);
+    p.alpha_t = fmax(brdfcl_mixf(ag, 1.0f, s2), 0.0005f);
     p.sheen_alpha = rs * rs + 0.0005f;
     p.sheen_roughness = rs;
     p.clearcoat_alpha = rc * rc + 0.0005f;

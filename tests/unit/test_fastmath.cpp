@@ -6,7 +6,8 @@
 #include <cfloat>
 
 #include "support.hpp"
-#include "workload.hpp"
+#include "host/src/eval/workload.hpp"
+#include "peers.hpp"
 
 using namespace brdfcl;
 using namespace brdfcl::test;
@@ -82,9 +83,9 @@ TEST(Peers, ScalarPeerComputesWhatTheKernelComputes) {
   for (const auto& name : bench::workloadNames()) {
     bench::Bench b(runtime(), name, 1 << 14, 7);
     b.runKernel();
-    b.runPeer(peers::Flavor::Scalar);
+    peers::run(peers::Flavor::Scalar, name, b.peerInput());
     EXPECT_LE(b.peerDeviation(), 1e-4) << name;
-    b.runPeer(peers::Flavor::OpenMPSimd);
+    peers::run(peers::Flavor::OpenMPSimd, name, b.peerInput());
     EXPECT_LE(b.peerDeviation(), 5e-3) << name << " (fast-math peer)";
   }
 }

@@ -285,7 +285,7 @@ TEST(GBufferCamera, SpheresGBufferCarriesItsCamera) {
   const GBuffer r = readGBuffer(dir.path("g.exr"));
   ASSERT_TRUE(r.camera.has_value());
   expectSameCamera(*r.camera, expected);
-  // render --gbuffer writes renderSpheresGBuffer's G-buffer too (cmd_render.cpp), camera and all.
+  // render --gbuffer writes renderSpheresGBuffer's G-buffer too (render/render_job.cpp renderPrepared), camera and all.
 }
 
 // glTF G-buffers record the view they were traced with: a perspective camera node (the demo

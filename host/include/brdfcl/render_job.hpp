@@ -1,10 +1,14 @@
-// What `brdfcl render` does between parsing its options and writing its files, as one library
-// call: load and frame a glTF asset (or set up the built-in spheres), light it, ray-cast and
-// shade it. The CLI and the Python module both render through these functions.
+// What `brdfcl render`, `gbuffer` and `demo` do between parsing their options and writing their
+// files, as library calls: check a job, load and frame a glTF asset (or set up the built-in
+// spheres), light it, ray-cast and shade it. The CLI and the Python module both render through
+// these functions.
 #pragma once
 #include <functional>
+#include <memory>
+#include <optional>
 #include <string>
 
+#include "brdfcl/frame_budget.hpp"
 #include "brdfcl/gltf.hpp"
 #include "brdfcl/gltf_render.hpp"
 #include "brdfcl/material.hpp"
@@ -30,20 +34,6 @@ struct FramedAsset {
 FramedAsset loadFramedAsset(const std::string& path, const gltf::LoadOptions& options, const std::string& camera,
                             int width = 0, int height = 0);
 
-// Ray-casts and shades a framed asset: spp stratified sub-pixel samples (gltf::renderFrame).
-Image renderFramedAsset(Runtime& rt, const FramedAsset& framed, const Scene& lighting, int spp,
-                        const ShadeOptions& shadeOptions = {}, const EvalOptions& model = {},
-                        const std::function<void(int, int)>& progress = {}, ShadeStats* stats = nullptr);
-// The same with the asset's Raycaster already built (the CLI traces a G-buffer with it too).
-Image renderFramedAsset(Runtime& rt, const FramedAsset& framed, const gltf::Raycaster& raycaster, const Scene& lighting,
-                        int spp, const ShadeOptions& shadeOptions = {}, const EvalOptions& model = {},
-                        const std::function<void(int, int)>& progress = {}, ShadeStats* stats = nullptr);
-// The same with the shading split across several devices (brdfcl/device_set.hpp).
-Image renderFramedAsset(DeviceSet& devices, const FramedAsset& framed, const gltf::Raycaster& raycaster,
-                        const Scene& lighting, int spp, const ShadeOptions& shadeOptions = {},
-                        const EvalOptions& model = {}, const std::function<void(int, int)>& progress = {},
-                        ShadeStats* stats = nullptr);
-
 // Everything one render takes; the defaults are `brdfcl render`'s.
 struct RenderJob {
   std::string gltf;                  // asset path; "" renders the built-in `scene`
@@ -63,9 +53,45 @@ struct RenderJob {
   bool environmentGiven = false;
   std::string lights = "gltf";
   EvalOptions model;                 // profile (lobe All)
-  ShadeOptions shade;                // IBL mode
+  ShadeOptions shade;                // IBL mode; firstRow and rowCount shade a band of rows
   std::function<void(const std::string&)> warn;  // the asset's load warnings, one line each
+  std::function<void(int, int)> frameProgress;   // glTF only: sub-pixel samples done of spp
+  std::function<void(const ShadeStats&)> exactStats;  // after each --ibl exact shade: its error estimate
 };
+
+// A RenderJob checked, with its glTF asset loaded and framed and its light chosen, before any
+// device opens: its size tells the CLI how to split the rows between ranks.
+struct PreparedRender {
+  std::optional<FramedAsset> framed;  // the glTF asset; empty for the built-in scene
+  Scene scene;                        // the asset's lighting, or the built-in scene with the job's light
+  int width = 0, height = 0;
+};
+
+// renderJob's checks, loading and lighting, in its order and with its messages. `kind`
+// FrameJob::GBuffer prepares a G-buffer alone: no lighting, and the G-buffer's memory budget.
+PreparedRender prepareRender(const RenderJob& job, FrameJob kind = FrameJob::Render);
+
+// The devices a render runs on: one Runtime (the Python module) or a DeviceSet (`--device 0,2`).
+class RenderDevices {
+ public:
+  RenderDevices(Runtime& rt) : runtime_(&rt) {}              // NOLINT: implicit, so callers pass either
+  RenderDevices(DeviceSet& devices) : devices_(&devices) {}  // NOLINT
+  Runtime& first();
+  std::unique_ptr<Shader> shader(const Scene& scene, const EvalOptions& model) const;
+
+ private:
+  Runtime* runtime_ = nullptr;
+  DeviceSet* devices_ = nullptr;
+};
+
+// Ray-casts and shades `prepared` under job.model and job.shade; `gbuffer`, when not null,
+// receives the pixel-centre G-buffer.
+Image renderPrepared(RenderDevices devices, const PreparedRender& prepared, const RenderJob& job,
+                     GBuffer* gbuffer = nullptr);
+
+// The pixel-centre G-buffer of `prepared`: a glTF asset is ray-cast on the host, the built-in
+// scene on the device `device` opens (called only then).
+GBuffer tracePrepared(const PreparedRender& prepared, const std::function<Runtime&()>& device);
 
 // The linear radiance `brdfcl render --out x.exr` writes for the same options, after the same
 // checks (spp and size ranges, options that apply to glTF assets only, --ibl exact with a
@@ -75,5 +101,7 @@ Image renderJob(Runtime& rt, const RenderJob& job);
 // The checks alone, before a device is opened (the CLI runs them first).
 void checkRenderSpp(int spp);
 void checkRenderSize(int width, int height);
+// --ibl exact with an engine profile as `model` or as the --diff-against `against`.
+void checkExactIbl(const ShadeOptions& shade, const EvalOptions& model, const EvalOptions& against = {});
 
 }  // namespace brdfcl

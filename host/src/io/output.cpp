@@ -211,6 +211,10 @@ std::string npyHeader(const std::string& shape) {
   return std::string(prefix, sizeof prefix) + dict;
 }
 
+std::string npyHeader(std::size_t rows, std::size_t cols) {
+  return npyHeader("(" + std::to_string(rows) + ", " + std::to_string(cols) + ")");
+}
+
 }  // namespace brdfcl::detail
 
 namespace brdfcl {

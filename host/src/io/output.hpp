@@ -60,5 +60,7 @@ void copyFile(const std::string& from, int fd, const std::string& userPath);
 // NPY v1.0 header of float32 data with the given shape tuple ("(12, 3)"), padded to 128 bytes
 // so that a streamed file can reserve it and patch the row count in place.
 std::string npyHeader(const std::string& shape);
+// The same for a (rows, cols) matrix.
+std::string npyHeader(std::size_t rows, std::size_t cols);
 
 }  // namespace brdfcl::detail

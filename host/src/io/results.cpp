@@ -171,7 +171,7 @@ class OutputFile {
   std::size_t used_ = 0;
 };
 
-std::string npyHeader(std::size_t rows) { return detail::npyHeader("(" + std::to_string(rows) + ", 3)"); }
+std::string npyHeader(std::size_t rows) { return detail::npyHeader(rows, 3); }
 
 // Appends `rows` CSV rows in rounds of `batch` rows per worker: formatting runs in parallel,
 // writing in file order, and memory stays bounded whatever the row count.

@@ -2,8 +2,6 @@
 // weights) is decoded once here rather than per sample on the device.
 #include "model/pack.hpp"
 
-#include "kernels/common/material_pack.h"
-
 #include <algorithm>
 #include <charconv>
 #include <cmath>
@@ -13,6 +11,8 @@
 #include <fmt/format.h>
 
 #include "brdfcl/error.hpp"
+// Last: the kernels' C++ shim (common/host_compat.h) defines OpenCL names for what follows only.
+#include "kernels/common/material_pack.h"
 
 namespace brdfcl {
 

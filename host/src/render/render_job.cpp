@@ -1,5 +1,6 @@
-// renderJob and its pieces (brdfcl/render_job.hpp): the asset framing, lighting and frame render
-// that `brdfcl render` and the Python module's render() share, so both give the same bits.
+// renderJob and its pieces (brdfcl/render_job.hpp): the checks, asset framing, lighting and frame
+// render that `brdfcl render`, `gbuffer`, `demo` and the Python module's render() share, so all
+// give the same bits.
 #include "brdfcl/render_job.hpp"
 
 #include <fmt/format.h>
@@ -35,66 +36,85 @@ FramedAsset loadFramedAsset(const std::string& path, const gltf::LoadOptions& op
   return f;
 }
 
-Image renderFramedAsset(Runtime& rt, const FramedAsset& framed, const Scene& lighting, int spp,
-                        const ShadeOptions& shadeOptions, const EvalOptions& model,
-                        const std::function<void(int, int)>& progress, ShadeStats* stats) {
-  const gltf::Raycaster raycaster(framed.asset);
-  return renderFramedAsset(rt, framed, raycaster, lighting, spp, shadeOptions, model, progress, stats);
+void checkExactIbl(const ShadeOptions& shade, const EvalOptions& model, const EvalOptions& against) {
+  if (shade.ibl == IblMode::Exact && (model.profile != Profile::Spec || against.profile != Profile::Spec))
+    throw Error("--ibl exact integrates the spec's BRDF only; an engine profile reproduces its engine's own "
+                "image-based light, so use --ibl split-sum with --profile and --diff-against");
 }
 
-Image renderFramedAsset(Runtime& rt, const FramedAsset& framed, const gltf::Raycaster& raycaster, const Scene& lighting,
-                        int spp, const ShadeOptions& shadeOptions, const EvalOptions& model,
-                        const std::function<void(int, int)>& progress, ShadeStats* stats) {
-  Shader shader(rt, lighting, model);
-  return gltf::renderFrame(shader, raycaster, framed.view, framed.width, framed.height, spp, progress, shadeOptions,
-                           stats);
-}
-
-Image renderFramedAsset(DeviceSet& devices, const FramedAsset& framed, const gltf::Raycaster& raycaster,
-                        const Scene& lighting, int spp, const ShadeOptions& shadeOptions, const EvalOptions& model,
-                        const std::function<void(int, int)>& progress, ShadeStats* stats) {
-  Shader shader(devices, lighting, model);
-  return gltf::renderFrame(shader, raycaster, framed.view, framed.width, framed.height, spp, progress, shadeOptions,
-                           stats);
-}
-
-Image renderJob(Runtime& rt, const RenderJob& job) {
+PreparedRender prepareRender(const RenderJob& job, FrameJob kind) {
   const bool sizeGiven = job.width != 0 || job.height != 0;
   if (sizeGiven) checkRenderSize(job.width, job.height);
   checkRenderSpp(job.spp);
   checkIblSamples(job.shade.iblSamples);
-  if (job.shade.ibl == IblMode::Exact && job.model.profile != Profile::Spec)
-    throw Error("--ibl exact integrates the spec's BRDF only; an engine profile reproduces its engine's own "
-                "image-based light, so use --ibl split-sum with --profile and --diff-against");
+  checkExactIbl(job.shade, job.model);
   const Environment environment = parseEnvironmentSpec(job.environment, job.envIntensity, job.envRotation);
+  const bool lit = kind != FrameJob::GBuffer;
+  PreparedRender p;
   if (!job.gltf.empty()) {
     gltf::LoadOptions options;
     options.scene = job.gltfScene;
     options.variant = job.variant;
     options.strict = job.strict;
     options.allowOutsideUris = job.allowOutsideUris;
-    const FramedAsset framed = loadFramedAsset(job.gltf, options, job.camera, job.width, job.height);
+    p.framed = loadFramedAsset(job.gltf, options, job.camera, job.width, job.height);
     if (job.warn)
-      for (const auto& w : framed.asset.warnings) job.warn(w);
-    const Scene lighting =
-        gltf::frameLighting(framed.asset, framed.view, job.lights, environment, job.environmentGiven, job.allowOutsideUris);
-    checkFrameFits(FrameJob::Render, framed.width, framed.height, usableHostMemory());
-    return renderFramedAsset(rt, framed, lighting, job.spp, job.shade, job.model);
+      for (const auto& w : p.framed->asset.warnings) job.warn(w);
+    if (lit)
+      p.scene = gltf::frameLighting(p.framed->asset, p.framed->view, job.lights, environment, job.environmentGiven,
+                                    job.allowOutsideUris);
+    p.width = p.framed->width;
+    p.height = p.framed->height;
+  } else {
+    if (!job.camera.empty()) throw Error("--camera applies to glTF assets; add --gltf FILE");
+    if (job.gltfScene != -1) throw Error("--gltf-scene applies to glTF assets; add --gltf FILE");
+    if (!job.variant.empty()) throw Error("--variant applies to glTF assets; add --gltf FILE");
+    if (job.strict) throw Error("--strict applies to glTF assets; add --gltf FILE");
+    if (job.sppGiven)
+      throw Error("--spp applies to glTF assets (the spheres are shaded at pixel centres); add --gltf FILE");
+    p.width = sizeGiven ? job.width : 768;
+    p.height = sizeGiven ? job.height : 768;
+    p.scene = builtinScene(job.scene);
+    if (lit) {
+      if (job.environmentGiven) p.scene.environment = environment;
+      gltf::applyLightsOption(p.scene, job.lights, job.environmentGiven, job.allowOutsideUris);
+    }
   }
-  if (!job.camera.empty()) throw Error("--camera applies to glTF assets; add --gltf FILE");
-  if (job.gltfScene != -1) throw Error("--gltf-scene applies to glTF assets; add --gltf FILE");
-  if (!job.variant.empty()) throw Error("--variant applies to glTF assets; add --gltf FILE");
-  if (job.strict) throw Error("--strict applies to glTF assets; add --gltf FILE");
-  if (job.sppGiven)
-    throw Error("--spp applies to glTF assets (the spheres are shaded at pixel centres); add --gltf FILE");
-  const int w = sizeGiven ? job.width : 768, h = sizeGiven ? job.height : 768;
-  Scene scene = builtinScene(job.scene);
-  if (job.environmentGiven) scene.environment = environment;
-  gltf::applyLightsOption(scene, job.lights, job.environmentGiven, job.allowOutsideUris);
-  checkFrameFits(FrameJob::Render, w, h, usableHostMemory());
-  const GBuffer g = renderSpheresGBuffer(rt, scene, w, h);
-  Shader shader(rt, scene, job.model);
-  return shader.shade(g, job.shade);
+  checkFrameFits(kind, p.width, p.height, usableHostMemory());
+  return p;
 }
+
+Runtime& RenderDevices::first() { return devices_ != nullptr ? devices_->runtime(0) : *runtime_; }
+
+std::unique_ptr<Shader> RenderDevices::shader(const Scene& scene, const EvalOptions& model) const {
+  return devices_ != nullptr ? std::make_unique<Shader>(*devices_, scene, model)
+                             : std::make_unique<Shader>(*runtime_, scene, model);
+}
+
+Image renderPrepared(RenderDevices devices, const PreparedRender& p, const RenderJob& job, GBuffer* gbuffer) {
+  ShadeStats stats;
+  ShadeStats* const wanted = job.exactStats ? &stats : nullptr;
+  Image img;
+  if (p.framed) {
+    const gltf::Raycaster raycaster(p.framed->asset);
+    const auto shader = devices.shader(p.scene, job.model);
+    img = gltf::renderFrame(*shader, raycaster, p.framed->view, p.width, p.height, job.spp, job.frameProgress, job.shade,
+                            wanted);
+    if (gbuffer != nullptr) *gbuffer = raycaster.trace(p.framed->view, p.width, p.height);
+  } else {
+    GBuffer g = renderSpheresGBuffer(devices.first(), p.scene, p.width, p.height);
+    img = devices.shader(p.scene, job.model)->shade(g, job.shade, wanted);
+    if (gbuffer != nullptr) *gbuffer = std::move(g);
+  }
+  if (wanted != nullptr && job.shade.ibl == IblMode::Exact) job.exactStats(stats);
+  return img;
+}
+
+GBuffer tracePrepared(const PreparedRender& p, const std::function<Runtime&()>& device) {
+  if (p.framed) return gltf::Raycaster(p.framed->asset).trace(p.framed->view, p.width, p.height);
+  return renderSpheresGBuffer(device(), p.scene, p.width, p.height);
+}
+
+Image renderJob(Runtime& rt, const RenderJob& job) { return renderPrepared(rt, prepareRender(job), job); }
 
 }  // namespace brdfcl

@@ -1,6 +1,12 @@
-// The few OpenCL C builtins and qualifiers the BRDF headers use, as C++ inlines, so that the
-// peers compile kernels/brdf/material.h itself: the C++ loops compute the very same math.
-#pragma once
+/* The few OpenCL C builtins and qualifiers the kernel headers use, as C++ inlines, so that host
+   C++ compiles the very same source: the material packing (common/material_pack.h, in
+   host/src/model/pack.cpp) and the benchmarks' peers (kernels/brdf/material.h). OpenCL never
+   includes it. */
+#ifndef BRDFCL_HOST_COMPAT_H
+#define BRDFCL_HOST_COMPAT_H
+#ifdef __OPENCL_VERSION__
+#error "common/host_compat.h is for host C++ only"
+#endif
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -24,9 +30,14 @@ static inline int as_int(float x) { int i; std::memcpy(&i, &x, 4); return i; }
 static inline float as_float(int i) { float x; std::memcpy(&x, &i, 4); return x; }
 static inline int convert_int(float x) { return int(x); }
 static inline int isinf(float x) { return std::isinf(x); }
+using std::cos;
 using std::floor;
+using std::fmax;
+using std::sin;
 using std::exp;
 using std::exp2;
 using std::log1p;
 using std::log2;
 using std::sqrt;
+
+#endif

@@ -1,6 +1,6 @@
 // The benchmark workloads shared by build/bin/brdfcl-bench and `brdfcl bench`: per lobe, K
 // random materials (256 by default) carrying exactly that lobe's layers, and N random in-domain samples written
-// straight into a SoaBatch so that the kernel and the peers read the same arrays.
+// straight into a SoaBatch so that the kernel and the C++ peers (bench/peers) read the same arrays.
 #pragma once
 #include <cstdint>
 #include <memory>
@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "brdfcl/evaluator.hpp"
-#include "peers.hpp"
+#include "host/src/eval/peer_input.hpp"
 
 namespace brdfcl::bench {
 
@@ -26,10 +26,6 @@ struct Workload {
 constexpr std::size_t kDefaultMaterials = 256;
 Workload makeWorkload(const std::string& name, std::uint64_t seed = 1, std::size_t materials = kDefaultMaterials);
 
-// The header of a float32 C-order NPY of `rows` x `cols`, padded to a multiple of 64 bytes: the
-// sample files the file benchmarks write (rows of material, L.xyz, V.xyz are 7 columns).
-std::string npyFloatHeader(std::size_t rows, std::size_t cols);
-
 // Bytes a sample moves: L and V (24), the material index (4) and RGB out (12).
 constexpr double kBytesPerSample = 40.0;
 
@@ -46,7 +42,8 @@ class Bench {
   void runKernel() { batch_->run(); }
   Evaluator& evaluator() { return *evaluator_; }
   const SoaBatch& batch() const { return *batch_; }
-  void runPeer(peers::Flavor flavor) { peers::run(flavor, workload_.name, peerInput_); }
+  // The batch's planes as the peers read them, with output planes of their own.
+  const peers::Input& peerInput() const { return peerInput_; }
   // Largest |kernel - peer| / (|kernel| + 1e-3) over the batch, after both ran.
   double peerDeviation() const;
   // Replaces the random directions with given ones, six planes of size() floats (L.xyz, V.xyz),

@@ -1,6 +1,6 @@
 // Workload generation: materials per lobe and in-domain directions (N.L, N.V in [0.01, 1]) from
 // a fast counter-based generator, since 64M samples must not take longer to make than to run.
-#include "workload.hpp"
+#include "eval/workload.hpp"
 
 #include "brdfcl/error.hpp"
 
@@ -24,14 +24,6 @@ struct Rng {
   float in(float a, float b) { return a + (b - a) * uniform(); }
 };
 }  // namespace
-
-std::string npyFloatHeader(std::size_t rows, std::size_t cols) {
-  std::string dict = "{'descr': '<f4', 'fortran_order': False, 'shape': (" + std::to_string(rows) + ", " +
-                     std::to_string(cols) + "), }";
-  dict.append(63 - (10 + dict.size()) % 64, ' ');
-  dict += '\n';
-  return std::string("\x93NUMPY\x01\x00", 8) + char(dict.size() & 0xff) + char(dict.size() >> 8) + dict;
-}
 
 const std::vector<std::string>& workloadNames() {
   static const std::vector<std::string> names = {"sheen", "specular", "clearcoat", "all"};
