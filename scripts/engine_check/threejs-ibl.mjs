@@ -1,7 +1,7 @@
 // Driver for three.js's image-based light (PhysicalLightingModel's indirect(): indirectDiffuse,
 // indirectSpecular, ambientOcclusion, then finish()) under a uniform environment of radiance 1,
 // with the material state set as threejs.mjs sets it for the direct light.
-import { LOBES, loadEngine, readInputs, formatRow, setupMaterial } from './threejs.mjs';
+import { LOBES, loadEngine, readInputs, formatRow, setupMaterial, keepLobe } from './threejs.mjs';
 
 export async function main(tsl) {
   const engine = await loadEngine();
@@ -33,12 +33,8 @@ export async function main(tsl) {
       model.indirect = () => indirect.call(model, { context });
       model.start({ context, lightsNode: { getLightsNode: () => null, setupLights: environment } });
       // Lobes: each indirect accumulator enters finish() alone, the others 0.
-      const keep = (name) => lobe === 'all' || lobe === name;
-      const zero = (node) => { if (node) node.assign(tsl.vec3(0)); };
-      if (!keep('diffuse')) zero(reflectedLight.indirectDiffuse);
-      if (!keep('specular')) zero(reflectedLight.indirectSpecular);
-      if (!keep('sheen')) zero(model.sheenSpecularIndirect);
-      if (!keep('clearcoat')) zero(model.clearcoatSpecularIndirect);
+      keepLobe(tsl, lobe, { diffuse: reflectedLight.indirectDiffuse, specular: reflectedLight.indirectSpecular,
+        sheen: model.sheenSpecularIndirect, clearcoat: model.clearcoatSpecularIndirect });
       // LightsNode: outgoing light = (direct + indirect diffuse) + (direct + indirect specular).
       const outgoingLight = reflectedLight.directDiffuse.add(reflectedLight.indirectDiffuse)
         .add(reflectedLight.directSpecular.add(reflectedLight.indirectSpecular)).toVar();

@@ -84,6 +84,14 @@ export function setupMaterial(tsl, engine, m, V) {
     : new PhysicalLightingModel();
 }
 
+// Sets every lobe's accumulator (lobe name -> node, absent where the material lacks it) but
+// `lobe`'s to 0 ('all' keeps them all).
+export function keepLobe(tsl, lobe, accumulators) {
+  for (const [name, node] of Object.entries(accumulators)) {
+    if (node && lobe !== 'all' && lobe !== name) node.assign(tsl.vec3(0));
+  }
+}
+
 export async function main(tsl) {
   const engine = await loadEngine();
   const { mats, pairs } = readInputs();
@@ -106,12 +114,8 @@ export async function main(tsl) {
       model.start(builder);
       // Lobes: each lobe's accumulator enters finish() alone, the others 0; finish() then layers
       // the coat over diffuse + specular and adds the sheen, as for the whole.
-      const keep = (name) => lobe === 'all' || lobe === name;
-      const zero = (node) => { if (node) node.assign(tsl.vec3(0)); };
-      if (!keep('diffuse')) zero(reflectedLight.directDiffuse);
-      if (!keep('specular')) zero(reflectedLight.directSpecular);
-      if (!keep('sheen')) zero(model.sheenSpecularDirect);
-      if (!keep('clearcoat')) zero(model.clearcoatSpecularDirect);
+      keepLobe(tsl, lobe, { diffuse: reflectedLight.directDiffuse, specular: reflectedLight.directSpecular,
+        sheen: model.sheenSpecularDirect, clearcoat: model.clearcoatSpecularDirect });
       // LightingNode: outgoing light = direct diffuse + direct specular (+ indirect, 0 here).
       const outgoingLight = reflectedLight.directDiffuse.add(reflectedLight.directSpecular).toVar();
       model.finish({ context: { outgoingLight } });

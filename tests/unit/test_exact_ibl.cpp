@@ -18,6 +18,7 @@
 #include "brdfcl/gallery.hpp"
 #include "brdfcl/image.hpp"
 #include "brdfcl/render.hpp"
+#include "furnace.hpp"
 #include "process.hpp"
 #include "support.hpp"
 
@@ -75,30 +76,9 @@ GBuffer furnaceGBuffer(const std::vector<MaterialParams>& ms) {
   for (const auto& m : ms)
     for (float mu : kNdotV) {
       const float s = std::sqrt(std::max(0.0f, 1.0f - mu * mu));
-      g.P.insert(g.P.end(), {0, 0, 0});
-      g.N.insert(g.N.end(), {0, 0, 1});
-      g.T.insert(g.T.end(), {1, 0, 0});
-      g.V.insert(g.V.end(), {s, 0, mu});
-      g.baseColor.insert(g.baseColor.end(), m.baseColor.begin(), m.baseColor.end());
-      g.metallic.push_back(m.metallic);
-      g.roughness.push_back(m.roughness);
-      g.mask.push_back(1);
-      g.sheenColor.insert(g.sheenColor.end(), m.sheenColor.begin(), m.sheenColor.end());
-      g.sheenRoughness.push_back(m.sheenRoughness);
-      g.clearcoat.push_back(m.clearcoat);
-      g.clearcoatRoughness.push_back(m.clearcoatRoughness);
-      g.anisotropyStrength.push_back(m.anisotropyStrength);
-      g.anisotropyRotation.push_back(m.anisotropyRotation);
+      addFurnacePixel(g, m, s, 0, mu);
     }
   return g;
-}
-
-Scene environmentOnly(const char* kind) {
-  Scene s;
-  s.environment.builtin = true;
-  s.environment.builtinKind = kind;
-  s.environment.intensity = 1.0f;
-  return s;
 }
 
 // The reference directional albedo of every furnace pixel (min-form sheen scaling, as f), once.
@@ -120,7 +100,7 @@ Image exactFurnace(int samples, ShadeStats* stats = nullptr, int chunk = 0) {
   o.ibl = IblMode::Exact;
   o.iblSamples = samples;
   o.chunkSamples = chunk;
-  return Shader(runtime(), environmentOnly("uniform")).shade(furnaceGBuffer(furnaceMaterials()), o, stats);
+  return Shader(runtime(), builtinEnvironment("uniform")).shade(furnaceGBuffer(furnaceMaterials()), o, stats);
 }
 
 // RMS over pixels and channels of the relative error against the reference.
@@ -164,7 +144,7 @@ TEST(ExactIbl, WhiteFurnaceGivesTheReferenceAlbedoForEveryLayer) {
 // included (its own table); sheen differs by design (view-only E scaling), within 12 %.
 TEST(ExactIbl, SplitSumFurnaceStaysWithinItsDocumentedBounds) {
   const auto ms = furnaceMaterials();
-  const Image img = Shader(runtime(), environmentOnly("uniform")).shade(furnaceGBuffer(ms));
+  const Image img = Shader(runtime(), builtinEnvironment("uniform")).shade(furnaceGBuffer(ms));
   const auto& want = furnaceReference();
   auto luminance = [](double r, double g, double b) { return 0.2126 * r + 0.7152 * g + 0.0722 * b; };
   for (std::size_t m = 0; m < ms.size(); ++m) {
@@ -235,7 +215,7 @@ TEST(ExactIbl, AgreesWithTheSplitSumOnRoughDielectricsUnderTheSky) {
     g.V[3 * i] = vx, g.V[3 * i + 1] = 0.6f * vz, g.V[3 * i + 2] = 0.8f * vz;
   }
   g.T.clear();
-  Shader shader(runtime(), environmentOnly("sky"));
+  Shader shader(runtime(), builtinEnvironment("sky"));
   ShadeOptions o;
   o.ibl = IblMode::Exact;
   o.iblSamples = 4096;
@@ -256,7 +236,7 @@ TEST(ExactIbl, AgreesWithTheSplitSumOnRoughDielectricsUnderTheSky) {
 
 TEST(ExactIbl, SplitSumOptionsGiveTheDefaultBytes) {
   const GBuffer g = furnaceGBuffer(furnaceMaterials());
-  Shader shader(runtime(), environmentOnly("sky"));
+  Shader shader(runtime(), builtinEnvironment("sky"));
   const Image a = shader.shade(g), b = shader.shade(g, ShadeOptions{});
   EXPECT_EQ(std::memcmp(a.rgb.data(), b.rgb.data(), a.rgb.size() * 4), 0);
 }

@@ -11,6 +11,7 @@
 #include "brdfcl/image.hpp"
 #include "brdfcl/lut.hpp"
 #include "brdfcl/render.hpp"
+#include "furnace.hpp"
 #include "reference/profiles.hpp"
 #include "support.hpp"
 
@@ -25,31 +26,8 @@ GBuffer furnacePixels(const std::vector<MaterialParams>& ms, float mu) {
   g.width = int(ms.size());
   g.height = 1;
   const float s = std::sqrt(1.0f - mu * mu);
-  for (const auto& m : ms) {
-    g.P.insert(g.P.end(), {0, 0, 0});
-    g.N.insert(g.N.end(), {0, 0, 1});
-    g.T.insert(g.T.end(), {1, 0, 0});
-    g.V.insert(g.V.end(), {s, 0, mu});
-    g.baseColor.insert(g.baseColor.end(), m.baseColor.begin(), m.baseColor.end());
-    g.metallic.push_back(m.metallic);
-    g.roughness.push_back(m.roughness);
-    g.mask.push_back(1);
-    g.sheenColor.insert(g.sheenColor.end(), m.sheenColor.begin(), m.sheenColor.end());
-    g.sheenRoughness.push_back(m.sheenRoughness);
-    g.clearcoat.push_back(m.clearcoat);
-    g.clearcoatRoughness.push_back(m.clearcoatRoughness);
-    g.anisotropyStrength.push_back(m.anisotropyStrength);
-    g.anisotropyRotation.push_back(m.anisotropyRotation);
-  }
+  for (const auto& m : ms) addFurnacePixel(g, m, s, 0, mu);
   return g;
-}
-
-Scene furnace() {
-  Scene s;
-  s.environment.builtin = true;
-  s.environment.builtinKind = "uniform";
-  s.environment.intensity = 1.0f;
-  return s;
 }
 
 // E(mu, r) as the kernels sample the table (kernels/brdf/sheen_albedo.h: texels at sqrt spacing).
@@ -64,10 +42,10 @@ double sheenE(const SheenAlbedoTable& t, double mu, double r) {
 
 }  // namespace
 
-// Khronos's sheen reads the Charlie chain at lod r_s (levels - 1): col = Lc c E + col (1 - max3(c) E).
-// With every level of the chain at 1, a white sheen over a sheen-less material A gives
-// A + E (1 - A), at r_s = 0 (level 0, where Charlie's D underflows at every prefilter sample)
-// as at r_s = 0.1 (a blend of levels 0 and 1).
+// Khronos's sheen reads the Charlie chain at lod r_s (levels - 1): col = Lc c E + col (1 - max3(c) E_K),
+// E = E_CC and E_K the renderer's lut_sheen_E.png. With every level of the chain at 1, a white
+// sheen over a sheen-less material A gives E + A (1 - E_K), at r_s = 0 (level 0, where Charlie's D
+// underflows at every prefilter sample) as at r_s = 0.1 (a blend of levels 0 and 1).
 TEST(ProfileIblEngine, KhronosCharlieChainOfAUniformEnvironmentIsOneAtEveryLevel) {
   EvalOptions o;
   o.profile = Profile::Khronos;
@@ -86,17 +64,15 @@ TEST(ProfileIblEngine, KhronosCharlieChainOfAUniformEnvironmentIsOneAtEveryLevel
     ms.push_back(m);
   }
   const float mu = 0.1f;
-  const Image img = Shader(runtime(), furnace(), o).shade(furnacePixels(ms, mu));
+  const Image img = Shader(runtime(), builtinEnvironment(), o).shade(furnacePixels(ms, mu));
   const double a = img.rgb[0];
   ASSERT_GT(a, 0.0);
   for (std::size_t k = 0; k < rough.size(); ++k) {
     const double e = sheenE(table, mu, rough[k]);
     ASSERT_GT(e, 0.01) << "r_s = " << rough[k];
-    // The Charlie lobe is c E_CC; the base below it is scaled by the renderer's lut_sheen_E.png.
-    const double eLut = ref::khronosSheenE(mu, rough[k]);
-    const double want = e + a * (1.0 - eLut);
-    EXPECT_NEAR(img.rgb[3 * (k + 1)], want, 1e-4 * want) << "r_s = " << rough[k] << ", E = " << e
-                                                          << ", lut_sheen_E = " << eLut;
+    const double ek = ref::khronosSheenE(mu, rough[k]);
+    const double want = e + a * (1.0 - ek);
+    EXPECT_NEAR(img.rgb[3 * (k + 1)], want, 1e-4 * want) << "r_s = " << rough[k] << ", E = " << e << ", E_K = " << ek;
   }
 }
 
@@ -112,7 +88,7 @@ TEST(ProfileIblEngine, KhronosIblFresnelTakesNdotVWithoutAFloor) {
   m.metallic = 0.0f;
   m.roughness = 0.3f;
   const float mu = 1e-6f;
-  const Image img = Shader(runtime(), furnace(), o).shade(furnacePixels({m}, mu));
+  const Image img = Shader(runtime(), builtinEnvironment(), o).shade(furnacePixels({m}, mu));
   const Lut dfg = bakeLut(runtime(), LutKind::GgxDfg, 64);
   const int n = 64;
   const float s = std::sqrt(1.0f - mu * mu), len = std::sqrt(s * s + mu * mu);

@@ -9,6 +9,7 @@
 
 #include "brdfcl/io.hpp"
 #include "brdfcl/render.hpp"
+#include "furnace.hpp"
 #include "support.hpp"
 
 using namespace brdfcl;
@@ -84,30 +85,15 @@ std::array<double, 2> fitMX(double x, double y) {
 // N = V, under a uniform environment of radiance 1: (0.5 A + B)(1 + (0.5 + 0.5/21)(1 - E)/E), about
 // 0.336; F(N.V) = 0.5 there would give 0.328.
 TEST(ProfileMaterialxEngine, ImageBasedLightCompensatesWithTheAverageFresnel) {
+  MaterialParams m;
+  m.baseColor = {0.5f, 0.5f, 0.5f};
   GBuffer g;
   g.width = 1;
   g.height = 1;
-  g.P = {0, 0, 0};
-  g.N = {0, 0, 1};
-  g.T = {1, 0, 0};
-  g.V = {0, 0, 1};
-  g.baseColor = {0.5f, 0.5f, 0.5f};
-  g.metallic = {1.0f};
-  g.roughness = {1.0f};
-  g.mask = {1.0f};
-  g.sheenColor = {0, 0, 0};
-  g.sheenRoughness = {0};
-  g.clearcoat = {0};
-  g.clearcoatRoughness = {0};
-  g.anisotropyStrength = {0};
-  g.anisotropyRotation = {0};
-  Scene uniform;
-  uniform.environment.builtin = true;
-  uniform.environment.builtinKind = "uniform";
-  uniform.environment.intensity = 1.0f;
+  addFurnacePixel(g, m, 0, 0, 1);
   EvalOptions o;
   o.profile = Profile::Materialx;
-  const Image img = Shader(runtime(), uniform, o).shade(g);
+  const Image img = Shader(runtime(), builtinEnvironment(), o).shade(g);
   const auto ab = fitMX(1.0, 1.0);
   const double E = ab[0] + ab[1];
   const double want = (0.5 * ab[0] + ab[1]) * (1.0 + (0.5 + 0.5 / 21.0) * (1.0 - E) / E);

@@ -8,6 +8,7 @@
 
 #include "brdfcl/io.hpp"
 #include "brdfcl/render.hpp"
+#include "furnace.hpp"
 #include "reference/profiles.hpp"
 #include "support.hpp"
 
@@ -28,28 +29,31 @@ Image shadeUniform(const std::vector<Pixel>& px) {
   g.width = static_cast<int>(px.size());
   g.height = 1;
   for (const Pixel& p : px) {
-    g.P.insert(g.P.end(), {0, 0, 0});
-    g.N.insert(g.N.end(), {0, 0, 1});
-    g.T.insert(g.T.end(), {1, 0, 0});
-    g.V.insert(g.V.end(), {p.V[0], p.V[1], p.V[2]});
-    g.baseColor.insert(g.baseColor.end(), {p.base, p.base, p.base});
-    g.metallic.push_back(p.metallic);
-    g.roughness.push_back(p.roughness);
-    g.mask.push_back(1.0f);
-    g.sheenColor.insert(g.sheenColor.end(), {p.sheen, p.sheen, p.sheen});
-    g.sheenRoughness.push_back(p.sheenRoughness);
-    g.clearcoat.push_back(p.clearcoat);
-    g.clearcoatRoughness.push_back(p.clearcoatRoughness);
-    g.anisotropyStrength.push_back(0);
-    g.anisotropyRotation.push_back(0);
+    MaterialParams m;
+    m.baseColor = {p.base, p.base, p.base};
+    m.metallic = p.metallic;
+    m.roughness = p.roughness;
+    m.sheenColor = {p.sheen, p.sheen, p.sheen};
+    m.sheenRoughness = p.sheenRoughness;
+    m.clearcoat = p.clearcoat;
+    m.clearcoatRoughness = p.clearcoatRoughness;
+    addFurnacePixel(g, m, p.V[0], p.V[1], p.V[2]);
   }
-  Scene uniform;
-  uniform.environment.builtin = true;
-  uniform.environment.builtinKind = "uniform";
-  uniform.environment.intensity = 1.0f;
   EvalOptions o;
   o.profile = Profile::Threejs;
-  return Shader(runtime(), uniform, o).shade(g);
+  return Shader(runtime(), builtinEnvironment(), o).shade(g);
+}
+
+// Fdez-Aguera's single and multiple scattering of f0 from three.js's table at (1, N.V), as
+// computeMultiscattering takes them.
+struct Scattering {
+  double ss, ms;
+};
+Scattering multiscatter(float f0, float nv) {
+  const auto ab = ref::threejsDfg(1.0, nv);
+  const double ess = ab[0] + ab[1], ems = 1.0 - ess;
+  const double ss = f0 * ab[0] + ab[1], favg = f0 + (1.0 - f0) * 0.047619;
+  return {ss, ss * favg / (1.0 - ems * favg) * ems};
 }
 
 }  // namespace
@@ -66,10 +70,8 @@ TEST(ProfileThreejsIbl, MultiscatterIsMixedByMetalness) {
   EXPECT_NEAR(img.rgb[3], half, 1e-5 * half) << "m = 0: " << img.rgb[0] << ", m = 1: " << img.rgb[6];
 
   // The metal alone, from three.js's table at (rho, N.V) = (1, 0.8): Fdez-Aguera with F0 = 0.9.
-  const auto ab = ref::threejsDfg(1.0, 0.8f);
-  const double ess = ab[0] + ab[1], ems = 1.0 - ess, fss = 0.9f * ab[0] + ab[1];
-  const double favg = 0.9f + (1.0 - 0.9f) * 0.047619;
-  const double metal = fss + fss * favg / (1.0 - ems * favg) * ems;
+  const auto [fss, fms] = multiscatter(0.9f, 0.8f);
+  const double metal = fss + fms;
   EXPECT_NEAR(img.rgb[6], metal, 2e-5 * metal);
 }
 
@@ -80,9 +82,7 @@ TEST(ProfileThreejsIbl, GrazingViewCoatIsClampedNotFloored) {
   const float nv = 1e-6f;
   const Image img = shadeUniform({{{1.0f, 0.0f, nv}, 1.0f, 0.0f, 1.0f, 0, 0, 1.0f, 1.0f}});
   const auto ab = ref::threejsDfg(1.0, nv);
-  const double ess = ab[0] + ab[1], ems = 1.0 - ess;
-  const double ss = 0.04f * ab[0] + ab[1], favg = 0.04f + (1.0 - 0.04f) * 0.047619;
-  const double ms = ss * favg / (1.0 - ems * favg) * ems;
+  const auto [ss, ms] = multiscatter(0.04f, nv);
   const double base = ss + ms + (1.0 - (ss + ms));
   const double Fs = std::exp2(-(5.55473 * nv + 6.98316) * nv);
   const double Fcc = 0.04f * (1.0 - Fs) + Fs;
@@ -95,10 +95,7 @@ TEST(ProfileThreejsIbl, GrazingViewCoatIsClampedNotFloored) {
 TEST(ProfileThreejsIbl, GrazingViewSheenIsClampedNotFloored) {
   const float nv = 1e-6f;
   const Image img = shadeUniform({{{1.0f, 0.0f, nv}, 0.0f, 0.0f, 1.0f, 1.0f, 0.5f, 0, 0}});
-  const auto ab = ref::threejsDfg(1.0, nv);
-  const double ess = ab[0] + ab[1], ems = 1.0 - ess;
-  const double ss = 0.04f * ab[0] + ab[1], favg = 0.04f + (1.0 - 0.04f) * 0.047619;
-  const double ms = ss * favg / (1.0 - ems * favg) * ems;
+  const auto [ss, ms] = multiscatter(0.04f, nv);
   const double E = ref::threejsSheenAlbedo(nv, 0.5);
   const double col = (ss + ms) * (1.0 - E) + E;
   EXPECT_NEAR(img.rgb[0], col, 2e-5 * col);
