@@ -1,5 +1,5 @@
 // `brdfcl eval` timed as a whole process, file to file, beside the batch kernel on the very same
-// samples and materials in the same run (issue 13, item 3): a float32 NPY of N rows in the page
+// samples and materials in the same run: a float32 NPY of N rows in the page
 // cache to a fresh NPY, and the same rows as CSV to CSV.
 #include <benchmark/benchmark.h>
 

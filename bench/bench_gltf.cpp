@@ -1,4 +1,4 @@
-// glTF benchmarks on SheenChair (../shared/assets or $BRDFCL_ASSETS): the G-buffer trace, the
+// glTF benchmarks on SheenChair (the sample assets: $BRDFCL_ASSETS): the G-buffer trace, the
 // warm render at 1 and 4 samples per pixel, and the first render of an asset (loading, texture
 // decoding and mip generation included). Rows are skipped with a message when the asset is absent.
 #include <benchmark/benchmark.h>

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "reference/profiles.hpp"
+#include "profile_eval.hpp"
 #include "support.hpp"
 
 using namespace brdfcl;
@@ -15,21 +16,8 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-Samples pairsOf(const std::vector<std::array<float, 6>>& pairs) {
-  Samples s;
-  for (const auto& p : pairs) {
-    s.L.insert(s.L.end(), p.begin(), p.begin() + 3);
-    s.V.insert(s.V.end(), p.begin() + 3, p.end());
-    s.material.push_back(0);
-  }
-  return s;
-}
-
 std::vector<float> kernel(const MaterialParams& m, Lobe lobe, const Samples& s) {
-  EvalOptions o;
-  o.profile = Profile::Babylon;
-  o.lobe = lobe;
-  return Evaluator(runtime(), o).evaluate({m}, s);
+  return evalProfile(m, Profile::Babylon, lobe, s);
 }
 
 double rel(double a, double b) { return std::fabs(a - b) / std::max(std::fabs(b), 1e-30); }

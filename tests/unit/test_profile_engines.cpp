@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "brdfcl/io.hpp"
+#include "profile_eval.hpp"
 #include "support.hpp"
 
 using namespace brdfcl;
@@ -19,20 +20,7 @@ constexpr double kPi = 3.14159265358979323846;
 // One sample: unit L and V (normalized here) against one material under one profile and lobe.
 std::array<double, 3> evalOne(const MaterialParams& m, Profile p, Lobe lobe, std::array<double, 3> L,
                               std::array<double, 3> V) {
-  auto unit = [](std::array<double, 3> v) {
-    const double n = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-    return std::array<float, 3>{float(v[0] / n), float(v[1] / n), float(v[2] / n)};
-  };
-  Samples s;
-  s.material = {0};
-  const auto l = unit(L), v = unit(V);
-  s.L.assign(l.begin(), l.end());
-  s.V.assign(v.begin(), v.end());
-  EvalOptions o;
-  o.profile = p;
-  o.lobe = lobe;
-  const auto got = Evaluator(runtime(), o).evaluate({m}, s);
-  return {got[0], got[1], got[2]};
+  return evalPair(m, p, lobe, L, V);
 }
 
 MaterialParams dielectric(float roughness, float ior) {

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "brdfcl/io.hpp"
+#include "profile_eval.hpp"
 #include "support.hpp"
 
 using namespace brdfcl;
@@ -17,20 +18,7 @@ constexpr double kPi = 3.14159265358979323846;
 
 std::array<double, 3> evalThreejs(const MaterialParams& m, Lobe lobe, std::array<double, 3> L,
                                   std::array<double, 3> V) {
-  auto unit = [](std::array<double, 3> v) {
-    const double n = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-    return std::array<float, 3>{float(v[0] / n), float(v[1] / n), float(v[2] / n)};
-  };
-  Samples s;
-  s.material = {0};
-  const auto l = unit(L), v = unit(V);
-  s.L.assign(l.begin(), l.end());
-  s.V.assign(v.begin(), v.end());
-  EvalOptions o;
-  o.profile = Profile::Threejs;
-  o.lobe = lobe;
-  const auto got = Evaluator(runtime(), o).evaluate({m}, s);
-  return {got[0], got[1], got[2]};
+  return evalPair(m, Profile::Threejs, lobe, L, V);
 }
 
 // three.js's F_Schlick weight 1 - Fs, Fs = 2^(-(5.55473 x + 6.98316) x), without cancellation.

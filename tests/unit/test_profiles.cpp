@@ -9,6 +9,7 @@
 
 #include "process.hpp"
 #include "reference/profiles.hpp"
+#include "profile_eval.hpp"
 #include "support.hpp"
 
 using namespace brdfcl;
@@ -106,22 +107,7 @@ INSTANTIATE_TEST_SUITE_P(Profiles, ProfileKernelVsReference, testing::ValuesIn(a
 
 // ---- Deviations where documented, and nowhere else ----
 
-std::vector<float> evalOne(const MaterialParams& m, Profile p, Lobe l, const Samples& s) {
-  EvalOptions o;
-  o.profile = p;
-  o.lobe = l;
-  return Evaluator(runtime(), o).evaluate({m}, s);
-}
 
-Samples directionsOf(const std::vector<std::array<float, 6>>& pairs) {
-  Samples s;
-  for (const auto& p : pairs) {
-    s.L.insert(s.L.end(), p.begin(), p.begin() + 3);
-    s.V.insert(s.V.end(), p.begin() + 3, p.end());
-    s.material.push_back(0);
-  }
-  return s;
-}
 
 double maxRelDiff(const std::vector<float>& a, const std::vector<float>& b) {
   double worst = 0;
@@ -166,13 +152,13 @@ TEST(ProfileDeviations, KhronosEqualsSpecWhereNoDeviationApplies) {
   sheen.sheenColor = {1.0f, 1.0f, 1.0f};
   sheen.sheenRoughness = 0.3f;
   const float z = 0.02f, t = std::sqrt(1 - z * z);
-  const Samples grazing = directionsOf({{t, 0, z, t, 0, z}});
-  const auto sk = evalOne(sheen, Profile::Khronos, Lobe::Sheen, grazing), ss = evalOne(sheen, Profile::Spec, Lobe::Sheen, grazing);
+  const Samples grazing = pairsOf({{t, 0, z, t, 0, z}});
+  const auto sk = evalProfile(sheen, Profile::Khronos, Lobe::Sheen, grazing), ss = evalProfile(sheen, Profile::Spec, Lobe::Sheen, grazing);
   EXPECT_LT(sk[0], ss[0] * 0.9) << "khronos " << sk[0] << ", spec " << ss[0];
   // ...and not at normal incidence, where V_Charlie < 1.
-  const Samples normal = directionsOf({{0.3f, 0, 0.9539392f, -0.3f, 0, 0.9539392f}});
-  EXPECT_NEAR(evalOne(sheen, Profile::Khronos, Lobe::Sheen, normal)[0], evalOne(sheen, Profile::Spec, Lobe::Sheen, normal)[0],
-              1e-5 * evalOne(sheen, Profile::Spec, Lobe::Sheen, normal)[0]);
+  const Samples normal = pairsOf({{0.3f, 0, 0.9539392f, -0.3f, 0, 0.9539392f}});
+  EXPECT_NEAR(evalProfile(sheen, Profile::Khronos, Lobe::Sheen, normal)[0], evalProfile(sheen, Profile::Spec, Lobe::Sheen, normal)[0],
+              1e-5 * evalProfile(sheen, Profile::Spec, Lobe::Sheen, normal)[0]);
 }
 
 // Babylon's alpha + 0.0005: its sheen lobe is the spec's Charlie-Ashikhmin sheen lobe at
@@ -181,7 +167,7 @@ TEST(ProfileDeviations, KhronosEqualsSpecWhereNoDeviationApplies) {
 TEST(ProfileDeviations, BabylonBiasDiffersAtEveryRoughnessAndShrinks) {
   // Low N.H, where the Charlie lobe of a small alpha is not 0 in float.
   const float z = 0.3f, t = 0.9539392f;
-  const Samples s = directionsOf({{t, 0, z, t, 0, z}, {t, 0, z, 0, t, z}});
+  const Samples s = pairsOf({{t, 0, z, t, 0, z}, {t, 0, z, 0, t, z}});
   EvalOptions ashikhmin;
   ashikhmin.sheenVisibility = SheenVisibility::Ashikhmin;
   ashikhmin.lobe = Lobe::Sheen;
@@ -216,15 +202,15 @@ TEST(ProfileDeviations, FilamentSheenScalingDoesNotDependOnL) {
     const float tl = std::sqrt(1 - zl * zl);
     pairs.push_back({tl, 0, zl, -0.6f, 0, 0.8f});
   }
-  const Samples s = directionsOf(pairs);
+  const Samples s = pairsOf(pairs);
   MaterialParams plain = m;
   plain.sheenColor = {0.0f, 0.0f, 0.0f};
-  const auto f = evalOne(m, Profile::Filament, Lobe::Diffuse, s);
-  const auto f0 = evalOne(plain, Profile::Filament, Lobe::Diffuse, s);
+  const auto f = evalProfile(m, Profile::Filament, Lobe::Diffuse, s);
+  const auto f0 = evalProfile(plain, Profile::Filament, Lobe::Diffuse, s);
   for (std::size_t i = 1; i < pairs.size(); ++i) EXPECT_NEAR(f[3 * i] / f0[3 * i], f[0] / f0[0], 1e-6) << "pair " << i;
   EXPECT_LT(f[0] / f0[0], 0.99);  // the scaling is there
-  const auto spec = evalOne(m, Profile::Spec, Lobe::Diffuse, s);
-  const auto spec0 = evalOne(plain, Profile::Spec, Lobe::Diffuse, s);
+  const auto spec = evalProfile(m, Profile::Spec, Lobe::Diffuse, s);
+  const auto spec0 = evalProfile(plain, Profile::Spec, Lobe::Diffuse, s);
   EXPECT_GT(std::fabs(spec[0] / spec0[0] - spec[9] / spec0[9]), 1e-3);
 }
 
@@ -237,9 +223,9 @@ TEST(ProfileDeviations, ThreejsSheenIsNotUnderTheCoat) {
   MaterialParams coated = m;
   coated.clearcoat = 1.0f;
   coated.clearcoatRoughness = 0.2f;
-  const Samples s = directionsOf({{0.6f, 0, 0.8f, -0.8f, 0, 0.6f}, {0, 0.3f, 0.9539392f, 0.2f, 0, 0.9797959f}});
+  const Samples s = pairsOf({{0.6f, 0, 0.8f, -0.8f, 0, 0.6f}, {0, 0.3f, 0.9539392f, 0.2f, 0, 0.9797959f}});
   for (Profile p : kAllProfiles) {
-    const auto a = evalOne(m, p, Lobe::Sheen, s), b = evalOne(coated, p, Lobe::Sheen, s);
+    const auto a = evalProfile(m, p, Lobe::Sheen, s), b = evalProfile(coated, p, Lobe::Sheen, s);
     if (p == Profile::Threejs)
       EXPECT_EQ(a, b);
     else
@@ -276,13 +262,13 @@ TEST(ProfileDeviations, LobesSumToAllUnderEveryProfile) {
 TEST(ProfileDeviations, KhronosReproducesItsNaNAndSpecStaysFinite) {
   MaterialParams m;
   m.roughness = 0.0f;
-  const Samples s = directionsOf({{0, 0, 1, 0, 0, 1}, {0.6f, 0, 0.8f, -0.6f, 0, 0.8f}, {0.6f, 0, 0.8f, 0, 0.6f, 0.8f}});
-  const auto k = evalOne(m, Profile::Khronos, Lobe::All, s);
+  const Samples s = pairsOf({{0, 0, 1, 0, 0, 1}, {0.6f, 0, 0.8f, -0.6f, 0, 0.8f}, {0.6f, 0, 0.8f, 0, 0.6f, 0.8f}});
+  const auto k = evalProfile(m, Profile::Khronos, Lobe::All, s);
   EXPECT_TRUE(std::isnan(k[0]) && std::isnan(k[3]));  // mirror pairs: N.H = 1
   EXPECT_TRUE(std::isfinite(k[6]));                   // off the mirror: D = 0
-  for (float v : evalOne(m, Profile::Spec, Lobe::All, s)) EXPECT_TRUE(std::isfinite(v));
+  for (float v : evalProfile(m, Profile::Spec, Lobe::All, s)) EXPECT_TRUE(std::isfinite(v));
   for (Profile p : {Profile::Threejs, Profile::Filament, Profile::Babylon, Profile::Materialx})
-    for (float v : evalOne(m, p, Lobe::All, s)) EXPECT_TRUE(std::isfinite(v)) << toString(p);
+    for (float v : evalProfile(m, p, Lobe::All, s)) EXPECT_TRUE(std::isfinite(v)) << toString(p);
 }
 
 // A spec-only option with an engine profile is refused, naming both.
@@ -322,7 +308,7 @@ TEST(ProfileDeviations, ProfileOptionsAreCheckedBeforeWork) {
   // The library refuses the same IOR.
   MaterialParams m;
   m.ior = 0.5f;
-  EXPECT_EQ(errorOf([&] { Evaluator(runtime(), EvalOptions{}).evaluate({m}, directionsOf({{0, 0, 1, 0, 0, 1}})); }),
+  EXPECT_EQ(errorOf([&] { Evaluator(runtime(), EvalOptions{}).evaluate({m}, pairsOf({{0, 0, 1, 0, 0, 1}})); }),
             "material 0: ior must be 0 or a number >= 1, got 0.5");
 }
 

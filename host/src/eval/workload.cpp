@@ -3,6 +3,7 @@
 #include "eval/workload.hpp"
 
 #include "brdfcl/error.hpp"
+#include "eval/splitmix64.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -11,16 +12,10 @@
 namespace brdfcl::bench {
 
 namespace {
-// SplitMix64: a counter hashed to 64 random bits; uniform floats in [0, 1).
+// Uniform floats in [0, 1) and in [a, b) from SplitMix64.
 struct Rng {
-  std::uint64_t state;
-  std::uint64_t next() {
-    std::uint64_t z = (state += 0x9e3779b97f4a7c15ull);
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-    return z ^ (z >> 31);
-  }
-  float uniform() { return float(next() >> 40) * (1.0f / 16777216.0f); }
+  detail::SplitMix64 bits;
+  float uniform() { return bits.uniformFloat(); }
   float in(float a, float b) { return a + (b - a) * uniform(); }
 };
 }  // namespace
@@ -38,7 +33,7 @@ Workload makeWorkload(const std::string& name, std::uint64_t seed, std::size_t m
   w.name = name;
   w.options.lobe = name == "sheen" ? Lobe::Sheen : name == "specular" ? Lobe::Specular
                    : name == "clearcoat" ? Lobe::Clearcoat : Lobe::All;
-  Rng rng{seed * 0x2545f4914f6cdd1dull};
+  Rng rng{{seed * 0x2545f4914f6cdd1dull}};
   const bool sheen = name == "sheen" || name == "all";
   const bool coat = name == "clearcoat" || name == "all";
   const bool aniso = name == "specular" || name == "all";

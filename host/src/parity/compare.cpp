@@ -16,6 +16,7 @@
 #include "brdfcl/error.hpp"
 #include "brdfcl/evaluator.hpp"
 #include "brdfcl/profile_version.hpp"
+#include "eval/splitmix64.hpp"
 #include "io/messages.hpp"
 #include "parity/image_diff.hpp"
 
@@ -29,17 +30,10 @@ double luminance(const float* c) { return 0.2126 * c[0] + 0.7152 * c[1] + 0.0722
 double luminance(const Rgb& c) { return luminance(c.data()); }
 bool finite3(const float* c) { return std::isfinite(c[0]) && std::isfinite(c[1]) && std::isfinite(c[2]); }
 
-// splitmix64: the pairs must be the same on every standard library, which std:: distributions
-// do not promise.
+// The pairs must be the same on every platform and standard library.
 struct SplitMix {
-  std::uint64_t state;
-  std::uint64_t next() {
-    std::uint64_t z = (state += 0x9e3779b97f4a7c15ull);
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-    return z ^ (z >> 31);
-  }
-  double uniform() { return double(next() >> 11) * 0x1.0p-53; }  // [0, 1)
+  detail::SplitMix64 bits;
+  double uniform() { return bits.uniformDouble(); }
 };
 
 void pushUniformHemisphere(SplitMix& rng, std::vector<float>& out) {
@@ -134,7 +128,7 @@ Samples compareDirections(const CompareOptions& o) {
       s.V.insert(s.V.end(), {float(std::sin(tV)), 0.0f, float(std::cos(tV))});
       s.L.insert(s.L.end(), {float(-std::sin(tL)), 0.0f, float(std::cos(tL))});
     }
-  SplitMix rng{o.seed};
+  SplitMix rng{{o.seed}};
   for (std::size_t i = 0; i < o.randomPairs; ++i) {
     pushUniformHemisphere(rng, s.L);
     pushUniformHemisphere(rng, s.V);
