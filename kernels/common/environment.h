@@ -34,7 +34,7 @@ static inline float3 env_bilinear(__global const float* base, int w, int h, floa
    k >= 1 of max(min(w0, cap_w) >> k, 8) x max(min(h0, cap_h) >> k, 4). The cap lets a prefiltered
    chain keep level 0 (the mirror) at the map's resolution while its blurred levels stay as small
    as their lobes allow; a plain mip chain passes cap = w0, h0. `lod` in [0, levels - 1] blends
-   the two nearest levels. host/src/render/shader.cpp lays the chains out by the same rule. */
+   the two nearest levels. host/src/render/prefilter.cpp lays the chains out by the same rule. */
 static inline int env_level_w(int w0, int cap_w, int k) { return k == 0 ? max(w0, 8) : max(min(w0, cap_w) >> k, 8); }
 static inline int env_level_h(int h0, int cap_h, int k) { return k == 0 ? max(h0, 4) : max(min(h0, cap_h) >> k, 4); }
 

@@ -1,6 +1,7 @@
 /* What the shading kernels share with the host: the G-buffer plane order, the punctual light
    and camera records, and the environment's equirectangular mapping. Included verbatim by the
-   host (host/src/render/shader.cpp static_asserts the records) and by kernels/shade.cl. */
+   host (host/src/render/shader.cpp, camera.cpp and spheres_gbuffer.cpp static_assert the
+   records) and by kernels/shade.cl. */
 #ifndef BRDFCL_SHADING_LAYOUT_H
 #define BRDFCL_SHADING_LAYOUT_H
 
@@ -60,7 +61,7 @@ typedef struct brdfcl_sphere {
 /* Equirectangular environment: direction d (world, +Y up) -> u = 1/2 + atan2(d.x, -d.z) / 2pi
    (+ rotation / 2pi), v = acos(d.y) / pi, v = 0 at the top row. */
 
-/* Prefiltered environments (host/src/render/shader.cpp): the GGX chain keeps level 0 (the mirror)
+/* Prefiltered environments (host/src/render/prefilter.cpp): the GGX chain keeps level 0 (the mirror)
    at the map's size and computes levels >= 1 as for a map of at most CAP_W x CAP_H; the Charlie
    chain (sheen lobes are broad at every roughness) starts from at most CHARLIE_W x CHARLIE_H. */
 #define BRDFCL_PREFILTER_CAP_W 512

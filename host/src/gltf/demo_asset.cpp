@@ -202,7 +202,7 @@ json textureInfo(int texture, double scaleU = 0.0, double scaleV = 0.0) {
   return t;
 }
 
-// The factors are renderSpheresGBuffer()'s (host/src/render/shader.cpp), row by row.
+// The factors are renderSpheresGBuffer()'s (host/src/render/spheres_gbuffer.cpp), row by row.
 json material(int row, int col, int cloth, int flakes, int brushed) {
   static const char* const kRowName[] = {"white sheen", "coloured sheen", "clearcoat", "anisotropy strength",
                                          "anisotropy rotation", "gold"};
