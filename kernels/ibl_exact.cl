@@ -103,7 +103,7 @@ __kernel void ibl_exact(__global const float* restrict gb, int width, int height
   brdfcl_material packed = brdfcl_pack_material(px.q);
   material_lanes m = material_splat_private(&packed);
   const float3 N = px.N, V = px.V;
-  /* The anisotropic lobe's frame: T' rotated from T by the anisotropy rotation (002). */
+  /* The anisotropic lobe's frame: T' rotated from T by the anisotropy rotation (KHR_materials_anisotropy). */
   const float3 Ta = packed.aniso_cos * px.T + packed.aniso_sin * px.B, Ba = cross(N, Ta);
   const vec3w Vb = lanes3(frame_local(V, px.T, px.B, N)), Va = lanes3(frame_local(V, Ta, Ba, N));
   const vec3w Vc = lanes3(frame_local(V, px.Tc, px.Bc, px.Nc));

@@ -1,13 +1,19 @@
 /* The microfacet terms, one small function each (letter + model), over width-generic lanes.
    Angles come in as components of the UNNORMALIZED half vector h = L + V in the shading frame:
    sin^2 from the tangent components and cos^2 from the normal one keep N.H -> 1 exact in float. */
+/* Sources, cited in kernels/ by title and section:
+   glTF 2.0 Appendix B: https://registry.khronos.org/glTF/specs/2.0/glTF-2.0.html#appendix-b-brdf-implementation
+   KHR_materials_sheen: https://github.com/KhronosGroup/glTF/tree/main/extensions/2.0/Khronos/KHR_materials_sheen
+   KHR_materials_anisotropy: https://github.com/KhronosGroup/glTF/tree/main/extensions/2.0/Khronos/KHR_materials_anisotropy
+   KHR_materials_clearcoat: https://github.com/KhronosGroup/glTF/tree/main/extensions/2.0/Khronos/KHR_materials_clearcoat
+   Narkowicz 2018, "Cloth Shading": https://knarkowicz.wordpress.com/2018/01/04/cloth-shading/ */
 #ifndef BRDFCL_TERMS_H
 #define BRDFCL_TERMS_H
 
 #include "common/lanes.h"
 #include "common/fastmath.h"
 
-/* Burley 2012 anisotropic GGX; 002_aa19eb57033fc98d.txt "Anisotropy". ht, hb, hn: h on T', B', N;
+/* Burley 2012 anisotropic GGX; KHR_materials_anisotropy "Anisotropy". ht, hb, hn: h on T', B', N;
    h2 = |h|^2. With at == ab == alpha it is glTF Appendix B's isotropic D_GGX. */
 BRDF_FN realw D_GGX_Anisotropic(realw ht, realw hb, realw hn, realw h2, realw at, realw ab) {
   realw t = ht / at, b = hb / ab;
@@ -23,7 +29,7 @@ BRDF_FN realw D_GGX(realw hxy2, realw hn2, realw alpha) {
   return a2 * h2 * h2 / (M_PI_F * d * d);
 }
 
-/* Heitz 2014 height-correlated Smith, anisotropic form; 002 "Individual lights". */
+/* Heitz 2014 height-correlated Smith, anisotropic form; KHR_materials_anisotropy "Individual lights". */
 BRDF_FN realw V_GGX_Anisotropic(realw NdotL, realw NdotV, realw TdotV, realw BdotV, realw TdotL,
                                 realw BdotL, realw at, realw ab) {
   realw tv = at * TdotV, bv = ab * BdotV, tl = at * TdotL, bl = ab * BdotL;
@@ -43,7 +49,7 @@ BRDF_FN realw V_SmithGGXCorrelated(realw NdotL, realw NdotV, realw alpha) {
 /* Schlick 1994; glTF 2.0 Appendix B. `w` = (1 - |V.H|)^5, computed once by the caller. */
 BRDF_FN realw F_Schlick(realw f0, realw w) { return f0 + (1.0f - f0) * w; }
 
-/* Conty & Kulla 2017 "Charlie" sheen; 000_f98956a39f2e26b4.txt "Sheen distribution".
+/* Conty & Kulla 2017 "Charlie" sheen; KHR_materials_sheen "Sheen distribution".
    (sin^2)^(1/(2 alpha)) = exp(-log1p(cot^2) / (2 alpha)): no precision loss near N.H = 1 and
    exact at the large exponents of small alpha. */
 BRDF_FN realw D_Charlie(realw hxy2, realw hn2, realw alpha) {
@@ -52,7 +58,7 @@ BRDF_FN realw D_Charlie(realw hxy2, realw hn2, realw alpha) {
   return (2.0f + inv_r) * brdf_exp(0.5f * inv_r * log_sin2) * (0.5f / M_PI_F);
 }
 
-/* Ashikhmin & Premoze 2007 velvet, inverted Gaussian; 003 "AshikhminD", called with
+/* Ashikhmin & Premoze 2007 velvet, inverted Gaussian; "Cloth Shading" AshikhminD, called with
    roughness = alpha (m2 = alpha^2). sin^2 below 1e-6 leaves exp(-cot^2/m2) = 0 exactly in float
    (cot^2/m2 >= 1e6), so the floor only avoids 0/0 at N.H = 1. */
 BRDF_FN realw D_Ashikhmin(realw hxy2, realw hn2, realw alpha) {
@@ -64,7 +70,7 @@ BRDF_FN realw D_Ashikhmin(realw hxy2, realw hn2, realw alpha) {
   return (1.0f + lobe) / (M_PI_F * (1.0f + 4.0f * m2));
 }
 
-/* Conty & Kulla 2017 fit of the Charlie Lambda; 000 "Sheen visibility", with its constants.
+/* Conty & Kulla 2017 fit of the Charlie Lambda; KHR_materials_sheen "Sheen visibility", with its constants.
    The five coefficients depend on alpha only, so one set serves both directions. */
 typedef struct { realw a, b, c, d, e, l_half; } charlie_fit;
 
@@ -94,13 +100,14 @@ BRDF_FN realw Lambda_Charlie(charlie_fit f, realw cos_theta) {
   return brdf_exp(select(2.0f * f.l_half - l, l, low));
 }
 
-/* Conty & Kulla 2017 height-correlated visibility with the fitted Lambda; 000 "Sheen visibility". */
+/* Conty & Kulla 2017 height-correlated visibility with the fitted Lambda; KHR_materials_sheen "Sheen visibility". */
 BRDF_FN realw V_Charlie(realw NdotL, realw NdotV, realw alpha) {
   charlie_fit f = CharlieFit(alpha);
   return 1.0f / ((1.0f + Lambda_Charlie(f, NdotV) + Lambda_Charlie(f, NdotL)) * (4.0f * NdotV * NdotL));
 }
 
-/* Neubelt & Pettineo 2013, after Ashikhmin & Premoze 2007; 000 "Sheen visibility", 003. */
+/* Neubelt & Pettineo 2013, after Ashikhmin & Premoze 2007; KHR_materials_sheen "Sheen visibility",
+   "Cloth Shading" AshikhminV. */
 BRDF_FN realw V_Ashikhmin(realw NdotL, realw NdotV) {
   return 1.0f / (4.0f * (NdotL + NdotV - NdotL * NdotV));
 }

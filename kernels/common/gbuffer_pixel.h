@@ -9,7 +9,7 @@
 
 static inline float3 frame_local(float3 d, float3 t, float3 b, float3 n) { return (float3)(dot(d, t), dot(d, b), dot(d, n)); }
 
-/* 004 layering needs a frame only for its normal: any tangent will do. */
+/* KHR_materials_clearcoat's layering needs a frame only for its normal: any tangent will do. */
 static inline void frame_from_normal(float3 n, float3* t, float3* b) {
   float3 up = fabs(n.y) < 0.999f ? (float3)(0.0f, 1.0f, 0.0f) : (float3)(1.0f, 0.0f, 0.0f);
   *t = normalize(cross(up, n));

@@ -13,7 +13,7 @@
 typedef struct brdfcl_material_params {
   float base_color[3], metallic, roughness;
   float sheen_color[3], sheen_roughness;     /* ratified KHR_materials_sheen */
-  int draft;                                 /* 001's draft: sheen_color = colorFactor * intensityFactor */
+  int draft;                                 /* KHR_materials_sheen's experimental draft: sheen_color = colorFactor * intensityFactor */
   float clearcoat, clearcoat_roughness;
   float anisotropy_strength, anisotropy_rotation;
   int anisotropy;                            /* KHR_materials_anisotropy is present (khronos reads it) */
@@ -37,12 +37,12 @@ static inline brdfcl_material brdfcl_pack_material(brdfcl_material_params m) {
   p.aniso_strength = m.anisotropy_strength;
   p.metallic = m.metallic;
   p.alpha = fmax(alpha, BRDFCL_MIN_ALPHA);
-  p.alpha_t = fmax(alpha * (1.0f - s2) + s2, BRDFCL_MIN_ALPHA); /* 002: mix(alpha, 1, strength^2) */
+  p.alpha_t = fmax(alpha * (1.0f - s2) + s2, BRDFCL_MIN_ALPHA); /* KHR_materials_anisotropy: mix(alpha, 1, strength^2) */
   p.aniso_cos = cos(m.anisotropy_rotation);
   p.aniso_sin = sin(m.anisotropy_rotation);
   if (m.draft) {
-    /* 001: sheen roughness is the material roughness; (1 - reflectance) weights the additive
-       lobe, reflectance = max3(mix(0.04, baseColor, metallic)); no albedo scaling. */
+    /* KHR_materials_sheen's experimental draft: sheen roughness is the material roughness;
+       (1 - reflectance) weights the additive lobe, reflectance = max3(mix(0.04, baseColor, metallic)); no albedo scaling. */
     float f0[3];
     for (int i = 0; i < 3; ++i) f0[i] = 0.04f * (1.0f - m.metallic) + m.base_color[i] * m.metallic;
     p.sheen_max = 0.0f;

@@ -5,48 +5,26 @@
 #ifndef BRDFCL_PROFILE_IBL_H
 #define BRDFCL_PROFILE_IBL_H
 
-#include "common/environment.h"
+#include "light/ibl_env.h"
 #include "common/material_pack.h"
 #include "brdf/profiles/engine_terms.h"
 
-/* What the shading kernel hands over: the prefiltered chains (GGX and Charlie, roughness linear
-   in the level), the irradiance map (radiance a white Lambertian reflects), brdfcl's GGX DFG table
-   (A, B at N.V, perceptual roughness) and the profile's tables (E, then three.js's DFG, then for
-   khronos the Sample Renderer's sheen albedo texture). */
-typedef struct {
-  __global const float* ggx;
-  __global const float* charlie;
-  __global const float* irradiance;
-  int env_w, env_h, charlie_w, charlie_h, levels, irr_w, irr_h;
-  float rotation;
-  __global const float* dfg;
-  int dfg_size;
-  __global const float* tables;
-  int e_size;
-} profile_ibl_env;
-
-/* The geometry at the pixel: unit N, V, the clearcoat normal, and the anisotropy direction
-   (Ta, with Ba = N x Ta) when the strength is above 0. */
-typedef struct {
-  float3 N, V, Nc, Ta, Ba;
-} profile_ibl_frame;
-
-static inline float3 ibl_radiance(const profile_ibl_env* e, float3 R, float roughness) {
+static inline float3 ibl_radiance(const ibl_env* e, float3 R, float roughness) {
   return env_chain(e->ggx, e->env_w, e->env_h, BRDFCL_PREFILTER_CAP_W, BRDFCL_PREFILTER_CAP_H, e->levels, normalize(R),
                    e->rotation, clamp(roughness, 0.0f, 1.0f) * (float)(e->levels - 1));
 }
 
-static inline float3 ibl_charlie_radiance(const profile_ibl_env* e, float3 R, float roughness) {
+static inline float3 ibl_charlie_radiance(const ibl_env* e, float3 R, float roughness) {
   return env_chain(e->charlie, e->charlie_w, e->charlie_h, e->charlie_w, e->charlie_h, e->levels, normalize(R), e->rotation,
                    clamp(roughness, 0.0f, 1.0f) * (float)(e->levels - 1));
 }
 
-static inline float3 ibl_irradiance(const profile_ibl_env* e, float3 N) {
+static inline float3 ibl_irradiance(const ibl_env* e, float3 N) {
   return env_chain(e->irradiance, e->irr_w, e->irr_h, e->irr_w, e->irr_h, 1, N, e->rotation, 0.0f);
 }
 
 /* brdfcl's DFG table: (A, B) with directional albedo F0 A + B. */
-static inline float2 ibl_dfg(const profile_ibl_env* e, float nv, float r) {
+static inline float2 ibl_dfg(const ibl_env* e, float nv, float r) {
   float x = clamp(nv, 0.0f, 1.0f) * (float)(e->dfg_size - 1), y = clamp(r, 0.0f, 1.0f) * (float)(e->dfg_size - 1);
   int x0 = min((int)x, e->dfg_size - 2), y0 = min((int)y, e->dfg_size - 2);
   float fx = x - (float)x0, fy = y - (float)y0;
@@ -56,7 +34,7 @@ static inline float2 ibl_dfg(const profile_ibl_env* e, float nv, float r) {
   return mix(a, b, fy);
 }
 
-static inline float ibl_sheen_e(const profile_ibl_env* e, float mu, float r) {
+static inline float ibl_sheen_e(const ibl_env* e, float mu, float r) {
   return E_SheenAlbedo(e->tables, e->e_size, E_SheenAlbedoRow(e->e_size, r), mu);
 }
 
@@ -64,8 +42,8 @@ static inline float3 reflect_v(float3 V, float3 n) { return 2.0f * dot(n, V) * n
 static inline float pow4f(float x) { x *= x; return x * x; }
 static inline float s5f(float x) { return pow5w(1.0f - clamp(x, 0.0f, 1.0f)); }
 
-/* 002 "Image-based lighting" bent normal, as the spec (and three.js, Babylon) write it. */
-static inline float3 bent_normal_spec(const profile_ibl_frame* f, float s, float r) {
+/* KHR_materials_anisotropy "Image-based lighting" bent normal, as the spec (and three.js, Babylon) write it. */
+static inline float3 bent_normal_spec(const ibl_frame* f, float s, float r) {
   float3 bn = normalize(cross(cross(f->Ba, f->V), f->Ba));
   return normalize(mix(bn, f->N, pow4f(1.0f - s * (1.0f - r))));
 }
@@ -83,7 +61,7 @@ static inline float3 F_ibl_khronos(float3 F0, float r, float nv, float2 ab) {
   return FssEss + Ems * FssEss * Favg / (1.0f - Favg * Ems);
 }
 
-static inline float3 profile_ibl(const profile_ibl_env* e, const profile_ibl_frame* f, brdfcl_material_params q,
+static inline float3 profile_ibl(const ibl_env* e, const ibl_frame* f, brdfcl_material_params q,
                                  const brdfcl_material* p, float* emission_weight) {
   /* clampedDot: N.V and the coat's N.V clamped to [0, 1], no floor */
   float nv = clamp(dot(f->N, f->V), 0.0f, 1.0f), r = clamp(q.roughness, 0.0f, 1.0f);
@@ -131,17 +109,17 @@ static inline void ms_threejs(float3 Fr, float2 ab, float3* single, float3* mult
   *multi = Fms * Ems;
 }
 
-static inline float2 dfg_threejs(const profile_ibl_env* e, float r, float nv) {
+static inline float2 dfg_threejs(const ibl_env* e, float r, float nv) {
   float A, B;
   DFG_ThreeJs(e->tables + e->e_size * e->e_size, r, nv, &A, &B);
   return (float2)(A, B);
 }
 
-static inline float3 radiance_threejs(const profile_ibl_env* e, float3 V, float3 n, float r) {
+static inline float3 radiance_threejs(const ibl_env* e, float3 V, float3 n, float r) {
   return ibl_radiance(e, normalize(mix(reflect_v(V, n), n, r * r)), r);
 }
 
-static inline float3 profile_ibl(const profile_ibl_env* e, const profile_ibl_frame* f, brdfcl_material_params q,
+static inline float3 profile_ibl(const ibl_env* e, const ibl_frame* f, brdfcl_material_params q,
                                  const brdfcl_material* p, float* emission_weight) {
   float nv = clamp(dot(f->N, f->V), 0.0f, 1.0f), r = p->roughness;
   float3 base = (float3)(q.base_color[0], q.base_color[1], q.base_color[2]);
@@ -169,7 +147,7 @@ static inline float3 profile_ibl(const profile_ibl_env* e, const profile_ibl_fra
 /* surface_light_indirect.fs@1de6d8a5: E = f0 A + B with energy compensation, diffuse x (1 - E),
    radiance about the dominant direction mix(R, n, alpha^2), sheen from the GGX chain times DFG.z
    with view-only scaling, the coat's radiance times its Fresnel on N.V, Kulla's bent normal. */
-static inline float3 profile_ibl(const profile_ibl_env* e, const profile_ibl_frame* f, brdfcl_material_params q,
+static inline float3 profile_ibl(const ibl_env* e, const ibl_frame* f, brdfcl_material_params q,
                                  const brdfcl_material* p, float* emission_weight) {
   float nv = max(dot(f->N, f->V), 1e-4f), r = p->roughness, alpha = r * r;
   float3 base = (float3)(q.base_color[0], q.base_color[1], q.base_color[2]);
@@ -205,7 +183,7 @@ static inline float3 profile_ibl(const profile_ibl_env* e, const profile_ibl_fra
    (brdfcl's reading, docs/profiles.md), sheen from the GGX chain times E with view-only scaling,
    the coat's radiance times 0.04 A + B over (1 - Fc) on everything below. Radiance is read at
    sqrt(alpha_G) of each lobe. */
-static inline float3 profile_ibl(const profile_ibl_env* e, const profile_ibl_frame* f, brdfcl_material_params q,
+static inline float3 profile_ibl(const ibl_env* e, const ibl_frame* f, brdfcl_material_params q,
                                  const brdfcl_material* p, float* emission_weight) {
   float nv = max(dot(f->N, f->V), 1e-4f), r = q.roughness;
   float3 base = (float3)(q.base_color[0], q.base_color[1], q.base_color[2]);
@@ -241,7 +219,7 @@ static inline float3 profile_ibl(const profile_ibl_env* e, const profile_ibl_fra
    times its analytic-fit albedo and the same energy compensation as the direct light (tinted by the
    average Fresnel F0 + (F90 - F0)/21), layered by the same throughputs; sheen from the irradiance
    times E; a weight below M_FLOAT_EPS leaves a BSDF out; no bent normal; emission above the coat. */
-static inline float3 profile_ibl(const profile_ibl_env* e, const profile_ibl_frame* f, brdfcl_material_params q,
+static inline float3 profile_ibl(const ibl_env* e, const ibl_frame* f, brdfcl_material_params q,
                                  const brdfcl_material* p, float* emission_weight) {
   float nv = clamp(dot(f->N, f->V), 1e-8f, 1.0f), avg = sqrt(p->alpha_t * p->alpha);
   float3 base = (float3)(q.base_color[0], q.base_color[1], q.base_color[2]);
