@@ -35,14 +35,14 @@ double V_SmithGGXCorrelated(double NdotL, double NdotV, double alpha) {
   return 0.5 / (ggxv + ggxl);
 }
 
-// 002_aa19eb57033fc98d.txt, "Anisotropy": D(h) = 1/(pi at ab ((h.t)^2/at^2 + (h.b)^2/ab^2 + (h.n)^2)^2).
+// the KHR_materials_anisotropy specification, "Anisotropy": D(h) = 1/(pi at ab ((h.t)^2/at^2 + (h.b)^2/ab^2 + (h.n)^2)^2).
 // Written as the normative formula rather than the sample code's rescaled form (same value).
 double D_GGX_Anisotropic(double NdotH, double TdotH, double BdotH, double at, double ab) {
   const double q = TdotH * TdotH / (at * at) + BdotH * BdotH / (ab * ab) + NdotH * NdotH;
   return 1.0 / (kPi * at * ab * q * q);
 }
 
-// 002_aa19eb57033fc98d.txt, "Implementation / Individual lights", V_GGX_anisotropic.
+// the KHR_materials_anisotropy specification, "Implementation / Individual lights", V_GGX_anisotropic.
 // The sample code clamps v to [0, 1]; the reference does not (the brief's model is unclamped).
 double V_GGX_Anisotropic(double NdotL, double NdotV, double TdotV, double BdotV, double TdotL,
                          double BdotL, double at, double ab) {
@@ -51,7 +51,7 @@ double V_GGX_Anisotropic(double NdotL, double NdotV, double TdotV, double BdotV,
   return 0.5 / (ggxv + ggxl);
 }
 
-// 000_f98956a39f2e26b4.txt, "Sheen distribution" (also 001 draft and 003 "CharlieD").
+// the KHR_materials_sheen specification, "Sheen distribution" (also the experimental draft, and "CharlieD" in Narkowicz, "Cloth Shading").
 // pow(sin2h, 1/(2 alpha)) is sin^(1/alpha) theta_h, the Conty-Kulla exponentiated sinusoid.
 double D_Charlie(double NdotH, double alpha) {
   const double invR = 1.0 / alpha;
@@ -60,7 +60,7 @@ double D_Charlie(double NdotH, double alpha) {
   return (2.0 + invR) * std::pow(sin2h, invR * 0.5) / (2.0 * kPi);
 }
 
-// 003_5dacd629735464d1.txt, "AshikhminD": inverted Gaussian, called with roughness := alpha.
+// Narkowicz, "Cloth Shading", "AshikhminD": inverted Gaussian, called with roughness := alpha.
 double D_Ashikhmin(double NdotH, double alpha) {
   const double m2 = alpha * alpha;
   const double cos2h = NdotH * NdotH;
@@ -72,7 +72,7 @@ double D_Ashikhmin(double NdotH, double alpha) {
 }
 
 namespace {
-// 000_f98956a39f2e26b4.txt, "Sheen visibility", l(x, alpha_g): the Conty-Kulla fit of the
+// the KHR_materials_sheen specification, "Sheen visibility", l(x, alpha_g): the Conty-Kulla fit of the
 // sheen Lambda, its five constants mixed by (1 - alpha_g)^2.
 double sheenL(double x, double alphaG) {
   const double oneMinusAlphaSq = (1.0 - alphaG) * (1.0 - alphaG);
@@ -85,7 +85,7 @@ double sheenL(double x, double alphaG) {
   return a / (1.0 + b * std::pow(x, c)) + d * x + e;
 }
 
-// 000_f98956a39f2e26b4.txt, "Sheen visibility", lambda_sheen: the fit is only trusted below
+// the KHR_materials_sheen specification, "Sheen visibility", lambda_sheen: the fit is only trusted below
 // cos = 0.5 and mirrored (in log space) about 0.5 above it.
 double lambdaSheen(double cosTheta, double alphaG) {
   return std::abs(cosTheta) < 0.5
@@ -94,14 +94,14 @@ double lambdaSheen(double cosTheta, double alphaG) {
 }
 }  // namespace
 
-// 000_f98956a39f2e26b4.txt, "Sheen visibility": 1/((1 + Lambda(V) + Lambda(L)) 4 N.V N.L),
+// the KHR_materials_sheen specification, "Sheen visibility": 1/((1 + Lambda(V) + Lambda(L)) 4 N.V N.L),
 // a height-correlated Smith form of the fitted Lambda.
 double V_Charlie(double NdotL, double NdotV, double alpha) {
   return 1.0 / ((1.0 + lambdaSheen(NdotV, alpha) + lambdaSheen(NdotL, alpha)) *
                 (4.0 * NdotV * NdotL));
 }
 
-// 000_f98956a39f2e26b4.txt, "Sheen visibility" (simpler alternative); same as 003 AshikhminV and
+// the KHR_materials_sheen specification, "Sheen visibility" (simpler alternative); same as 003 AshikhminV and
 // the 001 draft's sheenVisibility.
 double V_Ashikhmin(double NdotL, double NdotV) {
   return 1.0 / (4.0 * (NdotL + NdotV - NdotL * NdotV));
@@ -112,12 +112,12 @@ double F_Schlick(double f0, double VdotH) {
   return f0 + (1.0 - f0) * std::pow(1.0 - std::abs(VdotH), 5.0);
 }
 
-// 000_f98956a39f2e26b4.txt "Sheen distribution" / 003 "AshikhminD": the option's choice of D.
+// the KHR_materials_sheen specification "Sheen distribution" / 003 "AshikhminD": the option's choice of D.
 double sheenD(double NdotH, double alpha, SheenDistribution d) {
   return d == SheenDistribution::Charlie ? D_Charlie(NdotH, alpha) : D_Ashikhmin(NdotH, alpha);
 }
 
-// 000_f98956a39f2e26b4.txt "Sheen visibility": the option's choice of V.
+// the KHR_materials_sheen specification "Sheen visibility": the option's choice of V.
 double sheenV(double NdotL, double NdotV, double alpha, SheenVisibility v) {
   return v == SheenVisibility::Charlie ? V_Charlie(NdotL, NdotV, alpha) : V_Ashikhmin(NdotL, NdotV);
 }

@@ -22,22 +22,22 @@ struct MaterialParams {
   float metallic = 1.0f;
   float roughness = 1.0f;
 
-  // Ratified KHR_materials_sheen (000_f98956a39f2e26b4.txt).
+  // Ratified KHR_materials_sheen (the KHR_materials_sheen specification).
   Rgb sheenColor{0.0f, 0.0f, 0.0f};
   float sheenRoughness = 0.0f;
 
-  // Experimental draft (001_1d237f8840bf9d13.txt): used when the extension object has the
+  // Experimental draft (the experimental KHR_materials_sheen draft): used when the extension object has the
   // draft keys intensityFactor/colorFactor. Sheen roughness is then the material roughness.
   // draftIntensity lies in [0, kMaxDraftIntensity].
   bool draftSheen = false;
   float draftIntensity = 1.0f;
   Rgb draftColor{1.0f, 1.0f, 1.0f};
 
-  // KHR_materials_clearcoat (004_76cb6f49baa6fc7c.txt).
+  // KHR_materials_clearcoat (the KHR_materials_clearcoat specification).
   float clearcoat = 0.0f;
   float clearcoatRoughness = 0.0f;
 
-  // KHR_materials_anisotropy (002_aa19eb57033fc98d.txt).
+  // KHR_materials_anisotropy (the KHR_materials_anisotropy specification).
   float anisotropyStrength = 0.0f;
   float anisotropyRotation = 0.0f;  // radians, counter-clockwise from T in the tangent plane
   // Whether the material names KHR_materials_anisotropy at all: the khronos profile takes its
