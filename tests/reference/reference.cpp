@@ -102,7 +102,7 @@ double V_Charlie(double NdotL, double NdotV, double alpha) {
 }
 
 // the KHR_materials_sheen specification, "Sheen visibility" (simpler alternative); same as 003 AshikhminV and
-// the 001 draft's sheenVisibility.
+// the experimental draft's sheenVisibility.
 double V_Ashikhmin(double NdotL, double NdotV) {
   return 1.0 / (4.0 * (NdotL + NdotV - NdotL * NdotV));
 }
@@ -596,7 +596,7 @@ Lobes evalLobes(const brdfcl::MaterialParams& m, const brdfcl::EvalOptions& o, V
   Rgb sheenLobe{};
   double albedoScaling = 1.0;
   if (m.draftSheen) {
-    // 001 draft: roughness is the material's, always Charlie D with Ashikhmin V, blended by
+    // Experimental draft: roughness is the material's, always Charlie D with Ashikhmin V, blended by
     // (1 - reflectance) with reflectance = max3(mix(0.04, baseColor, metallic)); no albedo scaling.
     double reflectance = 0.0;
     for (int c = 0; c < 3; ++c)

@@ -37,7 +37,7 @@ double D_GGX_Anisotropic(double NdotH, double TdotH, double BdotH, double at, do
 // sample code in 002 (which takes BdotV before TdotV).
 double V_GGX_Anisotropic(double NdotL, double NdotV, double TdotV, double BdotV, double TdotL,
                          double BdotL, double at, double ab);
-// Charlie sheen NDF; alpha = sheenRoughness^2 (000) or roughness^2 (001 draft).
+// Charlie sheen NDF; alpha = sheenRoughness^2 (KHR_materials_sheen) or roughness^2 (the experimental draft).
 double D_Charlie(double NdotH, double alpha);
 // Ashikhmin velvet NDF as the article's AshikhminD(roughness := alpha, ndoth): m2 = alpha^2.
 double D_Ashikhmin(double NdotH, double alpha);

@@ -385,7 +385,7 @@ TEST(Reference, ReciprocalWhereTheModelIsSymmetric) {
 }
 
 TEST(Reference, ClearcoatAndViewScalingAreNotReciprocal) {
-  // Fc uses N.V (004), and View scaling uses E(N.V) only: neither is symmetric in L and V.
+  // Fc uses N.V (KHR_materials_clearcoat), and View scaling uses E(N.V) only: neither is symmetric in L and V.
   const Vec3 L = dir(0.15, 0.0), V = dir(0.9, 2.5);
   MaterialParams cc;
   cc.clearcoat = 1.0f;
@@ -461,7 +461,7 @@ TEST(Reference, LayeringFollowsTheSpecFormulas) {
     const Vec3 H = normalized({L.x + V.x, L.y + V.y, L.z + V.z});
     const Rgb fBase = ref::brdf(base, {}, L, V);
 
-    // Ratified sheen (000): sheenColor * D * V + scaling * material.
+    // Ratified sheen (KHR_materials_sheen): sheenColor * D * V + scaling * material.
     MaterialParams sh = base;
     sh.sheenColor = {uf(rng), uf(rng), uf(rng)};
     sh.sheenRoughness = uf(rng, 0.05, 1.0);
@@ -484,7 +484,7 @@ TEST(Reference, LayeringFollowsTheSpecFormulas) {
           expectRgbNear(ref::brdf(sh, o, L, V), expected, 1e-12, 1e-300, "ratified sheen");
         }
 
-    // Draft sheen (001): material + (1 - reflectance) * color * intensity * D_Charlie * V_Ashikhmin,
+    // Draft sheen (the experimental draft): material + (1 - reflectance) * color * intensity * D_Charlie * V_Ashikhmin,
     // with roughness = material roughness; options and sheenColor do not apply.
     MaterialParams dr = sh;
     dr.draftSheen = true;
@@ -505,7 +505,7 @@ TEST(Reference, LayeringFollowsTheSpecFormulas) {
     expectRgbNear(ref::brdf(dr, {}, L, V), expectedDraft, 1e-12, 1e-300, "draft sheen");
     expectRgbNear(ref::brdf(dr, odd, L, V), expectedDraft, 1e-12, 1e-300, "draft sheen, other options");
 
-    // Clearcoat (004) on top: (1 - c Fc) * below + c Fc * D_GGX * V_Smith, Fc on N.V.
+    // Clearcoat (KHR_materials_clearcoat) on top: (1 - c Fc) * below + c Fc * D_GGX * V_Smith, Fc on N.V.
     MaterialParams cc = sh;
     cc.clearcoat = uf(rng);
     cc.clearcoatRoughness = uf(rng, 0.05, 1.0);

@@ -234,7 +234,7 @@ class MaterialReader {
 
   // The draft and the ratified extension share a name but not a single key; the keys decide.
   void readSheen(const json& s, const std::string& path, MaterialParams& p, std::vector<std::string>& textures) const {
-    // "sheenFactor" is the draft's own example and disable rule (001) for what its table calls
+    // "sheenFactor" is the draft's own example and disable rule for what its table calls
     // intensityFactor: read it as that, so the draft's velvet example renders as velvet.
     static const char* const draftKeys[] = {"intensityFactor", "sheenFactor", "colorFactor", "colorIntensityTexture"};
     static const char* const ratifiedKeys[] = {"sheenColorFactor", "sheenRoughnessFactor", "sheenColorTexture",

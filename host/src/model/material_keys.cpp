@@ -39,7 +39,7 @@ struct Extension {
 const Extension kSheen{"KHR_materials_sheen",
                        {"sheenColorFactor", "sheenColorTexture", "sheenRoughnessFactor", "sheenRoughnessTexture"},
                        {"sheenColorTexture", "sheenRoughnessTexture"}};
-// The draft's keys (001), sheenFactor included: the materials reader takes it for intensityFactor.
+// The experimental draft's keys, sheenFactor included: the materials reader takes it for intensityFactor.
 const Extension kDraftSheen{"KHR_materials_sheen",
                             {"sheenColorFactor", "sheenColorTexture", "sheenRoughnessFactor", "sheenRoughnessTexture",
                              "intensityFactor", "sheenFactor", "colorFactor", "colorIntensityTexture"},
