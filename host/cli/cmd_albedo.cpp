@@ -39,7 +39,11 @@ void addAlbedoCommand(CLI::App& app) {
         if (cmd->count(o)) throw Error(fmt::format("{} applies to --materials FILE; add --materials", o));
       materials = gallery();
     } else {
-      materials = readUserMaterials(args->materials, args->strict);
+      // The reader's warnings wait until --material is known to be in range: a run that fails
+      // prints its error line alone.
+      std::vector<std::string> warnings;
+      materials = readUserMaterials(args->materials, args->strict,
+                                    [&warnings](const std::string& w) { warnings.push_back(w); });
       if (materials.empty()) throw Error(fmt::format("{}: the file has no materials", args->materials));
       for (std::size_t m = 0; m < materials.size(); ++m)
         if (materials[m].name.empty()) materials[m].name = fmt::format("materials[{}]", m);
@@ -49,6 +53,7 @@ void addAlbedoCommand(CLI::App& app) {
                                   args->materials, materials.size(), materials.size() - 1));
         materials = {materials[std::size_t(args->material)]};
       }
+      for (const auto& w : warnings) printWarning(w);
     }
     Runtime rt(args->device);
     const std::vector<float> anglesDeg = {0, 30, 60, 75, 85};

@@ -39,8 +39,8 @@ void addLutCommand(CLI::App& app) {
     EvalOptions o;
     o.sheenVisibility = parseSheenVisibility(args->visibility);
     o.sheenDistribution = parseSheenDistribution(args->distribution);
+    checkOutputPath("--out", args->out);  // first: a directory is named as --out, not as a bad extension
     checkLutPath(args->out);
-    checkOutputPath("--out", args->out);
     Runtime rt(args->device);
     const auto lut = bakeLut(rt, kind, std::size_t(args->size), o);
     writeLut(lut, args->out);

@@ -3,6 +3,7 @@
 #pragma once
 #include <CLI/CLI.hpp>
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -25,7 +26,9 @@ void addCacheCommand(CLI::App& app);
 
 // "brdfcl: warning: <text>" on stderr: the one form every command warns in.
 void printWarning(const std::string& text);
-// The user's materials file read as eval and albedo read it: warnings printed, --strict honoured.
-std::vector<MaterialParams> readUserMaterials(const std::string& path, bool strict);
+// The user's materials file read as eval and albedo read it: --strict honoured, warnings printed
+// (or handed to `warn`, for a command that checks more before it speaks).
+std::vector<MaterialParams> readUserMaterials(const std::string& path, bool strict,
+                                              const std::function<void(const std::string&)>& warn = {});
 
 }  // namespace brdfcl::cli

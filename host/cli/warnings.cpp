@@ -12,9 +12,10 @@ void printWarning(const std::string& text) {
   if (mpi::Session::get().rank() == 0) std::fprintf(stderr, "brdfcl: warning: %s\n", text.c_str());
 }
 
-std::vector<MaterialParams> readUserMaterials(const std::string& path, bool strict) {
+std::vector<MaterialParams> readUserMaterials(const std::string& path, bool strict,
+                                              const std::function<void(const std::string&)>& warn) {
   MaterialReadOptions options;
-  options.warn = printWarning;
+  options.warn = warn ? warn : std::function<void(const std::string&)>(printWarning);
   options.strict = strict;
   return readMaterials(path, options);
 }

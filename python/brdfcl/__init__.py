@@ -8,7 +8,9 @@ L points from the surface towards the light, V towards the viewer; f is the BRDF
 power-of-two rescaling of vectors beyond float's range), so the results equal the CLI's bit for bit. A direction at or below the
 horizon gives f = 0.
 
-Errors raise brdfcl.Error (a ValueError) carrying the CLI's message. The GIL is released while
+Errors raise a subclass of brdfcl.Error carrying the CLI's message, by kind: InputError (a
+ValueError), EnvironmentError (an OSError: no OpenCL platform or device, cache folder),
+DeviceError (a RuntimeError), OutOfMemoryError (a MemoryError), InternalError (a RuntimeError). The GIL is released while
 the device works; calls from several threads are safe.
 
 This file is the pure-Python front (argument checks and conversions, docstrings); the work is
@@ -28,13 +30,13 @@ from typing import TYPE_CHECKING, Any, Dict, List, Mapping, Optional, Sequence, 
 import numpy as np
 
 from . import _core
-from ._core import Error
+from ._core import DeviceError, EnvironmentError, Error, InputError, InternalError, OutOfMemoryError
 
 if TYPE_CHECKING:
     from . import plot as plot
 
 __all__ = [
-    "Error", "BrdfclWarning", "Evaluator", "devices", "evaluate", "evaluate_grid", "albedo", "lut",
+    "Error", "InputError", "DeviceError", "OutOfMemoryError", "InternalError", "BrdfclWarning", "Evaluator", "devices", "evaluate", "evaluate_grid", "albedo", "lut",
     "render", "shade", "read_gbuffer", "write_gbuffer", "read_exr", "LOBES", "PROFILES", "LUT_KINDS",
 ]
 __version__ = "0.1.0"
@@ -69,13 +71,13 @@ def _materials(materials: Any, strict: bool) -> "_core.Materials":
         elif isinstance(materials, (list, tuple)):
             doc = {"materials": list(materials)}
         else:
-            raise Error(
+            raise InputError(
                 "materials must be a glTF material dict, a list of them, a dict with \"materials\" or a "
                 f"path to a JSON file, got {type(materials).__name__}")
         try:
             text = json.dumps(doc, allow_nan=False, default=_json_default)
         except ValueError:
-            raise Error("<materials>: NaN and infinities are not valid material values (JSON has none); "
+            raise InputError("<materials>: NaN and infinities are not valid material values (JSON has none); "
                         "use numbers in the glTF ranges") from None
         m = _core.parse_materials(text, "<materials>", bool(strict))
     _warn(m.warnings)
@@ -97,10 +99,10 @@ def _directions(a: Any, name: str) -> np.ndarray:
     arr = np.asarray(a)
     if arr.dtype != np.float32 and arr.dtype != np.float64:
         if arr.dtype.kind not in "fiu":
-            raise Error(f"{name} must hold real numbers (float32 or float64), got dtype {arr.dtype}")
+            raise InputError(f"{name} must hold real numbers (float32 or float64), got dtype {arr.dtype}")
         arr = arr.astype(np.float64)
     if arr.ndim != 2 or arr.shape[1] != 3:
-        raise Error(f"{name} must have shape (N, 3), got {tuple(arr.shape)}")
+        raise InputError(f"{name} must have shape (N, 3), got {tuple(arr.shape)}")
     return np.ascontiguousarray(arr)
 
 
@@ -110,40 +112,40 @@ def _output(out: Optional[np.ndarray], shape: Tuple[int, ...], L: np.ndarray, V:
     if out is None:
         return np.empty(shape, dtype=np.float32)
     if not isinstance(out, np.ndarray):
-        raise Error(f"out must be a numpy array, got {type(out).__name__}")
+        raise InputError(f"out must be a numpy array, got {type(out).__name__}")
     if out.dtype != np.float32 or not out.flags.c_contiguous or not out.flags.writeable:
-        raise Error(f"out must be a writeable C-contiguous float32 array, got {out.dtype} "
+        raise InputError(f"out must be a writeable C-contiguous float32 array, got {out.dtype} "
                     f"({'C-contiguous' if out.flags.c_contiguous else 'not C-contiguous'}"
                     f"{'' if out.flags.writeable else ', read-only'})")
     if out.shape != tuple(shape):
-        raise Error(f"out must have shape {tuple(shape)}, got {out.shape}")
+        raise InputError(f"out must have shape {tuple(shape)}, got {out.shape}")
     if np.may_share_memory(out, L) or np.may_share_memory(out, V):
-        raise Error("out must not overlap L or V; pass a separate array")
+        raise InputError("out must not overlap L or V; pass a separate array")
     return out
 
 
 def _index(material_index: Any, n: int, count: int) -> Optional[np.ndarray]:
     if material_index is None:
         if count != 1:
-            raise Error(f"{count} materials but no material_index; give one index per sample "
+            raise InputError(f"{count} materials but no material_index; give one index per sample "
                         "(an int array of shape (N,))")
         return None
     idx = np.asarray(material_index)
     if idx.ndim != 1:
-        raise Error(f"material_index must have shape (N,), got {tuple(idx.shape)}")
+        raise InputError(f"material_index must have shape (N,), got {tuple(idx.shape)}")
     if idx.dtype.kind == "f":
         bad = ~(np.isfinite(idx) & (np.floor(idx) == idx) & (idx >= 0))
         if bad.any():
             row = int(np.argmax(bad))
-            raise Error(f"row {row}: material index {float(idx[row]):g} is not a non-negative integer")
+            raise InputError(f"row {row}: material index {float(idx[row]):g} is not a non-negative integer")
         idx = idx.astype(np.int64)
     elif idx.dtype.kind == "u":
         if idx.size and idx.max() > np.iinfo(np.int64).max:
             row = int(np.argmax(idx > np.iinfo(np.int64).max))
-            raise Error(f"row {row}: material index {int(idx[row])} out of range ({count} materials)")
+            raise InputError(f"row {row}: material index {int(idx[row])} out of range ({count} materials)")
         idx = idx.astype(np.int64)
     elif idx.dtype.kind != "i":
-        raise Error(f"material_index must hold integers, got dtype {idx.dtype}")
+        raise InputError(f"material_index must hold integers, got dtype {idx.dtype}")
     return np.ascontiguousarray(idx, dtype=np.int64)
 
 
@@ -176,10 +178,10 @@ class Evaluator:
         m = _materials(materials, strict)
         Ld, Vd = _directions(L, "L"), _directions(V, "V")
         if Ld.shape[0] != Vd.shape[0]:
-            raise Error(f"L and V must have the same number of rows, got {Ld.shape[0]} and {Vd.shape[0]}")
+            raise InputError(f"L and V must have the same number of rows, got {Ld.shape[0]} and {Vd.shape[0]}")
         idx = _index(material_index, Ld.shape[0], len(m))
         if idx is not None and idx.shape[0] != Ld.shape[0]:
-            raise Error(f"material_index must have one entry per sample: {idx.shape[0]} for {Ld.shape[0]} samples")
+            raise InputError(f"material_index must have one entry per sample: {idx.shape[0]} for {Ld.shape[0]} samples")
         out = _output(out, (Ld.shape[0], 3), Ld, Vd)
         self._device.evaluate(m, Ld, Vd, idx, out, opts)
         return out
@@ -193,7 +195,7 @@ class Evaluator:
         m = _materials(materials, strict)
         Ld, Vd = _directions(L, "L"), _directions(V, "V")
         if Ld.shape[0] != Vd.shape[0]:
-            raise Error(f"L and V must have the same number of rows, got {Ld.shape[0]} and {Vd.shape[0]}")
+            raise InputError(f"L and V must have the same number of rows, got {Ld.shape[0]} and {Vd.shape[0]}")
         out = _output(out, (len(m), Ld.shape[0], 3), Ld, Vd)
         self._device.evaluate_grid(m, Ld, Vd, out, opts)
         return out
@@ -206,13 +208,13 @@ class Evaluator:
         single = isinstance(material, Mapping) and "materials" not in material
         m = _materials(material, strict)
         if len(m) == 0:
-            raise Error("albedo: no materials given")
+            raise InputError("albedo: no materials given")
         mus = np.atleast_1d(np.asarray(cos_theta_v, dtype=np.float64))
         if mus.ndim != 1 or mus.size == 0:
-            raise Error(f"cos_theta_v must be a number or a 1-D array of numbers, got shape {tuple(mus.shape)}")
+            raise InputError(f"cos_theta_v must be a number or a 1-D array of numbers, got shape {tuple(mus.shape)}")
         bad = ~(np.isfinite(mus) & (mus >= 0.0) & (mus <= 1.0))
         if bad.any():
-            raise Error(f"cos_theta_v must lie in [0, 1] (N.V), got {float(mus[int(np.argmax(bad))]):g}")
+            raise InputError(f"cos_theta_v must lie in [0, 1] (N.V), got {float(mus[int(np.argmax(bad))]):g}")
         out = self._device.albedo(m, mus.astype(np.float32).tolist(), opts)
         scalar = np.ndim(cos_theta_v) == 0
         result = {}
@@ -230,9 +232,9 @@ class Evaluator:
         if kind in ("ggx-dfg", "charlie-dfg"):
             for name, value in (("sheen_visibility", sheen_visibility), ("sheen_distribution", sheen_distribution)):
                 if value is not None:
-                    raise Error(f"{name} applies to kind 'sheen-e' only; drop it for kind '{kind}'")
+                    raise InputError(f"{name} applies to kind 'sheen-e' only; drop it for kind '{kind}'")
         if isinstance(size, bool) or not isinstance(size, (int, np.integer)):
-            raise Error(f"size must be an integer from 2 to 4096, got {size!r}")
+            raise InputError(f"size must be an integer from 2 to 4096, got {size!r}")
         return self._device.lut(kind, int(size), sheen_visibility or "charlie", sheen_distribution or "charlie")
 
     def render(self, gltf: Optional[PathLike] = None, scene: Optional[str] = None, *,
@@ -247,7 +249,7 @@ class Evaluator:
         job = _core.RenderJob()
         if gltf is not None:
             if scene is not None:
-                raise Error("scene and gltf are alternatives; give one")
+                raise InputError("scene and gltf are alternatives; give one")
             job.gltf = os.fspath(gltf)
         else:
             job.scene = "spheres" if scene is None else str(scene)
@@ -256,9 +258,9 @@ class Evaluator:
                 w, h = size
                 job.width, job.height = _int(w, "size"), _int(h, "size")
             except (TypeError, ValueError):
-                raise Error(f"size must be (width, height) with sides 1 to 16384, e.g. (768, 768), got {size!r}") from None
+                raise InputError(f"size must be (width, height) with sides 1 to 16384, e.g. (768, 768), got {size!r}") from None
             if not (1 <= job.width <= 16384 and 1 <= job.height <= 16384):
-                raise Error(f"size must be (width, height) with sides 1 to 16384, e.g. (768, 768), got {size!r}")
+                raise InputError(f"size must be (width, height) with sides 1 to 16384, e.g. (768, 768), got {size!r}")
         if camera is not None:
             job.camera = str(camera)
         if spp is not None:
@@ -297,7 +299,7 @@ class Evaluator:
             scene_name = os.fspath(scene)
             s = _core.read_scene(scene_name, bool(allow_outside_uris))
         else:
-            raise Error(f"scene must be a path to a scene JSON file or a dict (docs/gbuffer.md), got {type(scene).__name__}")
+            raise InputError(f"scene must be a path to a scene JSON file or a dict (docs/gbuffer.md), got {type(scene).__name__}")
         # `brdfcl shade`'s warning about which camera shades (or that neither file has one).
         gbuffer_name = os.fspath(gbuffer) if isinstance(gbuffer, (str, os.PathLike)) else _GBUFFER_NAME
         camera_warning = _core.shade_camera_warning(scene_name, s, gbuffer_name, g)
@@ -308,7 +310,7 @@ class Evaluator:
 
 def _int(v: Any, name: str) -> int:
     if isinstance(v, bool) or not isinstance(v, (int, np.integer)):
-        raise Error(f"{name} must be an integer, got {v!r}")
+        raise InputError(f"{name} must be an integer, got {v!r}")
     return int(v)
 
 
@@ -327,7 +329,7 @@ def _gbuffer(gbuffer: Any, check: bool) -> "_core.GBuffer":
             # The range checks a G-buffer file gets (factors in [0, 1], unit normals), same words.
             _core.check_gbuffer(g, _GBUFFER_NAME)
         return g
-    raise Error(f"gbuffer must be a path to a G-buffer EXR or a dict of channel arrays, got {type(gbuffer).__name__}")
+    raise InputError(f"gbuffer must be a path to a G-buffer EXR or a dict of channel arrays, got {type(gbuffer).__name__}")
 
 
 _default_lock = threading.Lock()

@@ -24,7 +24,7 @@ except ImportError as e:  # the rest of brdfcl works without it
                       "(or pip install matplotlib)") from e
 
 from . import _core, _materials, albedo as _albedo, evaluate as _evaluate, lut as _lut, render as _render
-from . import Error, Evaluator, LOBES, MaterialsLike
+from . import Error, Evaluator, InputError, LOBES, MaterialsLike
 
 __all__ = ["Plot", "lobe", "halfdiff", "halfdiff_directions", "albedo", "sheen_e", "compare", "image", "tone_map", "KINDS"]
 
@@ -67,11 +67,11 @@ def _figure(figsize: Tuple[float, float], dpi: float) -> Figure:
     try:
         w, h = (float(v) for v in figsize)
     except (TypeError, ValueError):
-        raise Error(f"figsize must be (width, height) in inches, e.g. (9, 4.5), got {figsize!r}") from None
+        raise InputError(f"figsize must be (width, height) in inches, e.g. (9, 4.5), got {figsize!r}") from None
     if not (0 < w <= 100 and 0 < h <= 100):
-        raise Error(f"figsize must be (width, height) in inches from 0 to 100, got {figsize!r}")
+        raise InputError(f"figsize must be (width, height) in inches from 0 to 100, got {figsize!r}")
     if not (isinstance(dpi, (int, float)) and 1 <= dpi <= 1000):
-        raise Error(f"dpi must be a number from 1 to 1000, got {dpi!r}")
+        raise InputError(f"dpi must be a number from 1 to 1000, got {dpi!r}")
     return Figure(figsize=(w, h), dpi=dpi, layout="constrained")
 
 
@@ -80,9 +80,9 @@ def _select(materials: MaterialsLike, material: int, strict: bool) -> Tuple["_co
     m = materials if isinstance(materials, _core.Materials) else _materials(materials, strict)
     count = len(m)
     if isinstance(material, bool) or not isinstance(material, (int, np.integer)):
-        raise Error(f"material must be an integer index, got {material!r}")
+        raise InputError(f"material must be an integer index, got {material!r}")
     if not 0 <= material < count:
-        raise Error(f"material {material} is out of range: there {'is' if count == 1 else 'are'} {count} "
+        raise InputError(f"material {material} is out of range: there {'is' if count == 1 else 'are'} {count} "
                     f"material{'' if count == 1 else 's'}; use 0 to {count - 1}")
     name = m.names[int(material)] or "unnamed"
     return _core.select_material(m, int(material)), f"[{int(material)}] {name}"
@@ -94,7 +94,7 @@ def _channel(f: np.ndarray, channel: str) -> np.ndarray:
         return f.astype(np.float64) @ _REC709
     if channel in ("r", "g", "b"):
         return f[..., "rgb".index(channel)].astype(np.float64)
-    raise Error(f"channel must be one of {', '.join(CHANNELS)}, got {channel!r}")
+    raise InputError(f"channel must be one of {', '.join(CHANNELS)}, got {channel!r}")
 
 
 def _options_text(profile: str, sheen_visibility: str, sheen_distribution: str, sheen_scaling: str,
@@ -107,7 +107,7 @@ def _options_text(profile: str, sheen_visibility: str, sheen_distribution: str, 
 
 def _resolution(n: int, lo: int, hi: int) -> int:
     if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or not lo <= n <= hi:
-        raise Error(f"resolution must be an integer from {lo} to {hi}, got {n!r}")
+        raise InputError(f"resolution must be an integer from {lo} to {hi}, got {n!r}")
     return int(n)
 
 
@@ -150,15 +150,15 @@ def lobe(materials: MaterialsLike, material: int = 0, *, view_angles: Sequence[f
     try:
         views = [float(a) for a in np.atleast_1d(np.asarray(view_angles, dtype=np.float64))]
     except (TypeError, ValueError):
-        raise Error(f"view_angles must be numbers of degrees in [0, 90), got {view_angles!r}") from None
+        raise InputError(f"view_angles must be numbers of degrees in [0, 90), got {view_angles!r}") from None
     if not views or len(views) > 12 or not all(0 <= a < 90 for a in views):
-        raise Error(f"view_angles must be 1 to 12 angles in degrees in [0, 90), got {view_angles!r}")
+        raise InputError(f"view_angles must be 1 to 12 angles in degrees in [0, 90), got {view_angles!r}")
     if radius not in ("log", "linear"):
-        raise Error(f"radius must be log or linear, got {radius!r}")
+        raise InputError(f"radius must be log or linear, got {radius!r}")
     if not (isinstance(decades, (int, float)) and 0.5 <= decades <= 12):
-        raise Error(f"decades must be a number from 0.5 to 12, got {decades!r}")
+        raise InputError(f"decades must be a number from 0.5 to 12, got {decades!r}")
     if ax is not None and len(views) != 1:
-        raise Error(f"ax holds one polar plot; give one view angle with it, not {len(views)}")
+        raise InputError(f"ax holds one polar plot; give one view angle with it, not {len(views)}")
     theta_l = np.linspace(-90.0, 90.0, n)
     tl = np.radians(theta_l)
     L1 = np.stack([np.sin(tl), np.zeros(n), np.cos(tl)], axis=-1)
@@ -346,10 +346,14 @@ def albedo(materials: MaterialsLike, material: int = 0, *, resolution: int = 46,
     for lb in LOBES[1:] + LOBES[:1]:
         arrays[f"albedo_{lb}"] = result[lb][0]
         arrays[f"value_{lb}"] = _channel(result[lb][0], channel)
+        # A metal's specular lobe is its total: the total is dashed and thinner, drawn over the
+        # lobes, whose markers show where a lobe runs under it.
         if lb == "all":
-            a.plot(theta_v, arrays[f"value_{lb}"], color="black", linewidth=2, label="total (all)")
+            a.plot(theta_v, arrays[f"value_{lb}"], color="black", linewidth=1.2, linestyle=(0, (4, 3)),
+                   label="total (all)", zorder=3)
         else:
-            a.plot(theta_v, arrays[f"value_{lb}"], color=_LOBE_COLOURS[lb], linewidth=1.5, label=lb)
+            a.plot(theta_v, arrays[f"value_{lb}"], color=_LOBE_COLOURS[lb], linewidth=2, label=lb, zorder=2,
+                   marker="o", markersize=3, markevery=max(1, k // 12))
     what = "luminance" if channel == "luminance" else f"channel {channel.upper()}"
     a.set_xlabel("θ_V (degrees)")
     a.set_ylabel(f"directional albedo, {what} (unitless)")
@@ -376,7 +380,7 @@ def sheen_e(*, size: int = 64, sheen_visibility: Optional[str] = None, sheen_dis
     [roughness index, N·V index]).
     """
     if isinstance(size, bool) or not isinstance(size, (int, np.integer)) or not 2 <= size <= 1024:
-        raise Error(f"size must be an integer from 2 to 1024, got {size!r}")
+        raise InputError(f"size must be an integer from 2 to 1024, got {size!r}")
     e = _lut("sheen-e", int(size), sheen_visibility=sheen_visibility, sheen_distribution=sheen_distribution,
              device=device)
     x = np.maximum(np.arange(size) / (size - 1), 1e-4)
@@ -465,10 +469,10 @@ def tone_map(radiance: Any, exposure: float = 0.0) -> np.ndarray:
     """`brdfcl render`'s PNG pipeline on linear float RGB (H, W, 3): times 2^exposure, Khronos PBR
     Neutral, the sRGB OETF, 8-bit rounding; returned as float32 in [0, 1] (the 8-bit value / 255)."""
     if not (isinstance(exposure, (int, float, np.floating)) and math.isfinite(exposure)):
-        raise Error(f"exposure must be a finite number of stops, got {exposure!r}")
+        raise InputError(f"exposure must be a finite number of stops, got {exposure!r}")
     rgb = np.asarray(radiance, dtype=np.float32)
     if rgb.ndim != 3 or rgb.shape[2] != 3:
-        raise Error(f"the image must have shape (H, W, 3), got {tuple(rgb.shape)}")
+        raise InputError(f"the image must have shape (H, W, 3), got {tuple(rgb.shape)}")
     c = rgb * np.float32(2.0 ** exposure)
     with np.errstate(invalid="ignore", over="ignore", divide="ignore"):
         c = np.where(c > 0, np.minimum(c, np.finfo(np.float32).max), np.float32(0)).astype(np.float32)
@@ -508,7 +512,7 @@ def image(radiance: Any = None, *, exposure: float = 0.0, gltf: Optional[Union[s
         caption = f"{what}: profile {profile}"
     else:
         if gltf is not None or scene is not None or size is not None or render_options:
-            raise Error("image: give a radiance array or render options (gltf, scene, size, ...), not both")
+            raise InputError("image: give a radiance array or render options (gltf, scene, size, ...), not both")
         rad = np.asarray(radiance)
         caption = "image"
     display = tone_map(rad, exposure)

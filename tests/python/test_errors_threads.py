@@ -1,4 +1,4 @@
-# Bad input raises brdfcl.Error (a ValueError) with the documented one-line message
+# Bad input raises brdfcl.InputError (a brdfcl.Error and a ValueError) with the documented one-line message
 # (docs/errors.md), and four threads evaluating at once give the serial results.
 import threading
 

@@ -116,6 +116,14 @@ def test_albedo(tmp_path):
     assert np.allclose(a["cos_theta_v"], np.cos(np.radians(a["theta_v_deg"])))
     total = [ln for ln in fig.axes[0].get_lines() if ln.get_label() == "total (all)"][0]
     assert np.array_equal(total.get_ydata(), a["value_all"])
+    # The total stays see-through over a lobe equal to it (a metal's specular): dashed, on top,
+    # and every lobe carries markers.
+    lines = {ln.get_label(): ln for ln in fig.axes[0].get_lines()}
+    assert total.get_linestyle() != "-" and total.get_marker() in ("None", "", None)
+    for lobe in brdfcl.LOBES[1:]:
+        assert lines[lobe].get_marker() not in ("None", "", None), lobe
+        assert lines[lobe].get_zorder() < total.get_zorder(), lobe
+        assert lines[lobe].get_linewidth() > total.get_linewidth(), lobe
 
 
 def test_sheen_e(tmp_path):

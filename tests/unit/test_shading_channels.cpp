@@ -512,9 +512,9 @@ TEST(EnvironmentHdr, CommandLineSpec) {
   EXPECT_EQ(errorOf([&] { parseEnvironmentSpec("env.png", 1, 0); }),
             "--environment 'env.png': expected builtin, sky, studio, uniform, or an equirectangular .hdr or .exr file");
   EXPECT_EQ(errorOf([&] { parseEnvironmentSpec("studio", -1, 0); }),
-            "--environment 'studio': the intensity must be a finite number >= 0, got -1");
+            "--env-intensity -1 is not a finite number >= 0; give a radiance scale such as 1 or 0.5");
   EXPECT_EQ(errorOf([&] { parseEnvironmentSpec("studio", 1, std::nanf("")); }),
-            "--environment 'studio': the rotation must be a finite number of radians, got nan");
+            "--env-rotation nan is not a finite number of radians; give an angle such as 0 or 1.5708");
 }
 
 TEST(EnvironmentHdr, NonFiniteTexelsRejectedNegativeOnesClamped) {

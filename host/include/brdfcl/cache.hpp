@@ -50,7 +50,8 @@ struct CacheCleared {
 // the folder exists but is not a directory owned by this user.
 CacheCleared clearCache();
 
-// Where the cache's warnings go (one line each, without "brdfcl: warning: "). By default they
+// Where the cache's warnings go (one line each, without "brdfcl: warning: "), and the library's
+// other warnings that no call returns (an environment file that is not 2:1). By default they
 // are printed to stderr as "brdfcl: warning: <text>". An empty handler restores the default.
 void setCacheWarningHandler(std::function<void(const std::string&)> handler);
 

@@ -47,7 +47,7 @@ T* allocPages(std::size_t count) {
   const bool huge = bytes >= 2 * kHugePage;
   void* p = representable ? std::aligned_alloc(huge ? kHugePage : kPage, huge ? roundUp(bytes, kHugePage) : bytes) : nullptr;
   if (!p)
-    throw Error(fmt::format("out of host memory allocating {:.0f} MiB for a batch",
+    throw Error(ErrorKind::Memory, fmt::format("out of host memory allocating {:.0f} MiB for a batch",
                             std::ceil(double(count) * sizeof(T) / double(1 << 20))));
   if (huge) ::madvise(p, roundUp(bytes, kHugePage), MADV_HUGEPAGE);  // advice only: failure is harmless
   std::memset(p, 0, bytes);  // zero directions lie below the horizon: padding lanes give f = 0
@@ -206,7 +206,7 @@ SoaBatch::SoaBatch(Evaluator& evaluator, const std::vector<MaterialParams>& mate
 SoaBatch::SoaBatch(Evaluator& evaluator, const std::vector<MaterialParams>& materials, std::size_t capacity, bool pooled)
     : ev_(evaluator), pooled_(pooled), capacity_(roundUp(std::max<std::size_t>(capacity, 1), kLanes)), count_(capacity) {
   if (capacity > SIZE_MAX / 2)  // rounding up would wrap round: no such batch fits in memory
-    throw Error(fmt::format("out of host memory allocating {:.0f} MiB for a batch", double(capacity) * 4 / double(1 << 20)));
+    throw Error(ErrorKind::Memory, fmt::format("out of host memory allocating {:.0f} MiB for a batch", double(capacity) * 4 / double(1 << 20)));
   device_ = std::make_unique<Device>();
   device_->batch = ev_.prepare(materials);
   packed_ = device_->batch.packed;

@@ -2,7 +2,12 @@
 // through the same deferred shader as `brdfcl shade`, averaged into the pixel.
 #include "brdfcl/gltf_frame.hpp"
 
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
 #include <cmath>
+#include <cstring>
 
 #include <fmt/format.h>
 
@@ -27,6 +32,15 @@ void applyLightsOption(Scene& scene, const std::string& lights, bool environment
     scene.lights.clear();
     return;
   }
+  // A name that is no readable file is most often a mistyped choice: say which option it was.
+  struct stat st {};
+  const int err = ::stat(lights.c_str(), &st) != 0 ? errno
+                  : S_ISDIR(st.st_mode)             ? EISDIR
+                  : ::access(lights.c_str(), R_OK) != 0 ? errno
+                                                        : 0;
+  if (err != 0)
+    throw Error(fmt::format("--lights '{}': cannot read: {}; give gltf, none, or a scene .json file", lights,
+                            std::strerror(err)));
   const Scene file = readScene(lights, allowOutside);
   scene.lights = file.lights;
   if (!environmentGiven) scene.environment = file.environment;

@@ -91,7 +91,7 @@ Raycaster::Raycaster(const Asset& asset) : s_(std::make_unique<State>()) {
         rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(std::uint32_t), tc));
     if (!vb || !ib) {
       rtcReleaseGeometry(g);
-      throw Error("Embree: out of memory for " + p.where);
+      throw Error(ErrorKind::Memory, "Embree: out of memory for " + p.where);
     }
     std::copy(p.positions.begin(), p.positions.begin() + 3 * vc, vb);
     std::copy(p.indices.begin(), p.indices.begin() + 3 * tc, ib);

@@ -549,7 +549,7 @@ CacheCleared clearCache() {
   const auto folder = detail::openFolder(false, problem);
   if (!folder) {
     if (problem.empty()) return c;
-    throw Error(fmt::format("cache folder {}: {}; nothing removed", detail::quoted(c.folder), problem));
+    throw Error(ErrorKind::Environment, fmt::format("cache folder {}: {}; nothing removed", detail::quoted(c.folder), problem));
   }
   for (const auto& e : detail::listEntries(*folder, true)) {
     if (e.directory) continue;

@@ -41,6 +41,17 @@ std::size_t utf8Length(const std::string& s, std::size_t i) {
 }
 }  // namespace
 
+const char* toString(ErrorKind kind) {
+  switch (kind) {
+    case ErrorKind::Input: return "input";
+    case ErrorKind::Environment: return "environment";
+    case ErrorKind::Device: return "device";
+    case ErrorKind::Memory: return "memory";
+    case ErrorKind::Internal: return "internal";
+  }
+  return "internal";
+}
+
 std::string escapeMessage(const std::string& s) {
   static const char* hex = "0123456789ABCDEF";
   std::string out;

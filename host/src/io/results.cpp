@@ -50,7 +50,7 @@ class OutputFile {
   // Writes `fd`, which it closes when it `owns` it (not stdout's).
   OutputFile(int fd, bool owns, const std::string& userPath, bool direct = false)
       : userPath_(userPath), fd_(fd), owns_(owns), buf_(static_cast<char*>(std::aligned_alloc(kAlign, kBuffer))) {
-    if (!buf_) throw Error("out of host memory allocating an output buffer for '" + printable(userPath_, 300) + "'");
+    if (!buf_) throw Error(ErrorKind::Memory, "out of host memory allocating an output buffer for '" + printable(userPath_, 300) + "'");
     if (direct && onLocalDisk(fd_)) {
       const int flags = ::fcntl(fd_, F_GETFL);
       direct_ = flags >= 0 && ::fcntl(fd_, F_SETFL, flags | O_DIRECT) == 0;

@@ -3,6 +3,8 @@
 // (3 planes, v = 0 at +Y).
 #include <algorithm>
 #include <cmath>
+#include <mutex>
+#include <set>
 
 #include <fmt/format.h>
 
@@ -10,6 +12,7 @@
 #include "brdfcl/image.hpp"
 #include "brdfcl/render.hpp"
 #include "eval/quadrature.hpp"
+#include "io/disk_cache.hpp"
 
 namespace brdfcl {
 
@@ -69,6 +72,17 @@ std::vector<float> environmentPlanes(const Environment& env, int& width, int& he
   const auto rgb = readEnvironmentRgb(env.path, width, height);
   if (width < 8 || height < 4)
     throw Error(fmt::format("{}: environment of {}x{} texels is too small; use at least 8x4", env.path, width, height));
+  // Any size maps onto the sphere, so another shape is no error; but a picture that is not 2:1
+  // (a render, a photo) is stretched over it, which is seldom what was meant.
+  // Once per file and process: a render under two profiles reads the environment twice.
+  static std::mutex warnedMutex;
+  static std::set<std::string> warned;
+  std::unique_lock<std::mutex> lock(warnedMutex);
+  if (width != 2 * height && warned.insert(env.path).second)
+    detail::cacheWarning(fmt::format("{}: environment of {}x{} texels is not 2:1; it is read as an equirectangular "
+                                     "map (longitude across, latitude down) and stretched to fit",
+                                     env.path, width, height));
+  lock.unlock();
   const std::size_t n = std::size_t(width) * height;
   planes.resize(3 * n);
   for (std::size_t i = 0; i < n; ++i)

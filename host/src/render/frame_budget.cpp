@@ -63,7 +63,7 @@ void checkFrameFits(FrameJob job, int width, int height, std::uint64_t hostLimit
   const std::uint64_t maxPx = hostLimit > kBaseBytes ? (hostLimit - kBaseBytes) / hostBytesPerPixel(job) : 0;
   const double scale = std::sqrt(double(maxPx) / (double(width) * double(height)));
   const int fitW = std::max(1, int(std::floor(width * scale))), fitH = std::max(1, int(std::floor(height * scale)));
-  throw Error(fmt::format("{} {}x{} needs about {:.1f} GiB of memory, but this process may use {:.1f} GiB; the largest "
+  throw Error(ErrorKind::Memory, fmt::format("{} {}x{} needs about {:.1f} GiB of memory, but this process may use {:.1f} GiB; the largest "
                           "size of that shape that fits is {}x{}",
                           option, width, height, gib(need), gib(hostLimit), fitW, fitH));
 }

@@ -73,7 +73,7 @@ std::vector<cl::Platform> platformsOrThrow() {
   } catch (const cl::Error&) {
     platforms.clear();  // the ICD loader reports "no platform" as CL_PLATFORM_NOT_FOUND_KHR
   }
-  if (platforms.empty()) throw Error(kNoPlatform);
+  if (platforms.empty()) throw Error(ErrorKind::Environment, kNoPlatform);
   return platforms;
 }
 
@@ -88,7 +88,7 @@ std::vector<std::pair<cl::Device, cl::Platform>> allDevices() {
     }
     for (auto& d : devices) out.emplace_back(d, p);
   }
-  if (out.empty()) throw Error("no OpenCL device found; install pocl-opencl-icd (make deps)");
+  if (out.empty()) throw Error(ErrorKind::Environment, "no OpenCL device found; install pocl-opencl-icd (make deps)");
   return out;
 }
 
@@ -149,9 +149,11 @@ void rethrowOpenCL(const std::string& what) {
   } catch (const cl::BuildError& e) {
     std::string log;
     for (const auto& [dev, text] : e.getBuildLog()) log += text;
-    throw Error(fmt::format("{}: OpenCL kernel build failed ({}); build log:\n{}", what, e.what(), log));
+    throw Error(ErrorKind::Device, fmt::format("{}: OpenCL kernel build failed ({}); build log:\n{}", what, e.what(), log));
   } catch (const cl::Error& e) {
-    throw Error(fmt::format("{}: OpenCL call {} failed: {} ({})", what, e.what(), clErrorName(e.err()), e.err()));
+    const bool memory = e.err() == CL_OUT_OF_HOST_MEMORY || e.err() == CL_MEM_OBJECT_ALLOCATION_FAILURE;
+    throw Error(memory ? ErrorKind::Memory : ErrorKind::Device,
+                fmt::format("{}: OpenCL call {} failed: {} ({})", what, e.what(), clErrorName(e.err()), e.err()));
   }
 }
 
