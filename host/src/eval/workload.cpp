@@ -83,7 +83,7 @@ Bench::Bench(Runtime& rt, const std::string& workload, std::size_t n, std::uint6
       dir[3 * d + 2][i] = z;
     }
     // A modulo, not a mask, for any K; for the default 256 it draws the same indices as before.
-    index[i] = std::uint32_t(rng.next() % materials);
+    index[i] = std::uint32_t(rng.bits.next() % materials);
   }
   for (auto& p : peerOut_) p.assign(batch_->capacity(), 0.0f);
   for (int k = 0; k < 6; ++k) peerInput_.dir[k] = batch_->directionPlane(k);
