@@ -20,7 +20,7 @@
 #include "brdfcl/render.hpp"
 #include "kernels/common/shading_layout.h"
 #include "model/pack.hpp"
-#include "parity/engine_tables.hpp"
+#include "model/engine_tables.hpp"
 #include "render/exact_ibl.hpp"
 
 namespace brdfcl {
