@@ -16,7 +16,7 @@ using brdfcl::test::ScratchDir;
 const std::string kSource = BRDFCL_SOURCE_DIR;
 
 brdfcl::test::RunResult checkLayers(const ScratchDir& scratch, const std::string& src) {
-  return runProcess({BRDFCL_PYTHON3, kSource + "/scripts/check-layers", "--src", src}, scratch.dir());
+  return runProcess({kSource + "/scripts/check-layers", "--src", src}, scratch.dir());
 }
 
 // A copy of the checkout's host/src in the scratch folder, for planting files into.
@@ -55,7 +55,7 @@ TEST(Layers, FolderMissingFromLayersFails) {
 
 TEST(Layers, SelfTestPasses) {
   ScratchDir scratch("layers");
-  const auto r = runProcess({BRDFCL_PYTHON3, kSource + "/scripts/check-layers", "--self-test"}, scratch.dir());
+  const auto r = runProcess({kSource + "/scripts/check-layers", "--self-test"}, scratch.dir());
   EXPECT_EQ(r.status, 0) << r.describe();
 }
 
