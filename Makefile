@@ -4,7 +4,7 @@ PRESET ?= release
 JOBS ?= $(shell nproc)
 FUZZ_SECONDS ?= 60
 
-.PHONY: deps configure build test test-python test-devices test-asan fuzz demo bench bench-peers clean
+.PHONY: deps configure build test test-python test-devices test-asan fuzz demo bench bench-peers architecture clean
 
 deps:
 	@scripts/install-deps
@@ -15,8 +15,9 @@ configure: deps
 build: configure
 	@cmake --build --preset $(PRESET) -j $(JOBS)
 
-# The C++ tests, the engine check's harness on its own snippets (scripts/engine-check --self-test;
-# the check itself needs engine checkouts, docs/profiles.md), then the Python package's (tests/python) in build/venv-python: pinned build
+# The C++ tests, the layer check on its planted violations (scripts/check-layers --self-test), the
+# engine check's harness on its own snippets (scripts/engine-check --self-test; the check itself needs
+# engine checkouts, docs/profiles.md), then the Python package's (tests/python) in build/venv-python: pinned build
 # and test tools (python/requirements.txt), the package built by `pip install .` into a persistent
 # build dir (build/python-<tag>/: only what changed recompiles).
 PYTHON ?= /usr/bin/python3
@@ -25,6 +26,7 @@ VENV := build/venv-python
 test: build
 	@build/bin/brdfcl-tests --gtest_brief=1
 	@scripts/engine-check --self-test >/dev/null || scripts/engine-check --self-test
+	@scripts/check-layers --self-test >/dev/null || scripts/check-layers --self-test
 	@$(MAKE) --no-print-directory test-python
 
 test-python: build
@@ -68,6 +70,15 @@ bench-peers: configure
 	@cmake --build --preset $(PRESET) -j $(JOBS) --target brdfcl
 	@mkdir -p out
 	@bench/peers/run-mitsuba-peer --check --json out/bench-peers.json
+
+# docs/architecture.svg: the host library's modules and their links from CMake's own graph
+# (cmake --graphviz, filtered by CMakeGraphVizOptions.cmake), without the legend and without the
+# arrows that follow from others (Graphviz's tred), laid out by dot with the lowest layer at the bottom.
+architecture: configure
+	@mkdir -p build/graphviz
+	@cmake --preset $(PRESET) --graphviz=build/graphviz/brdfcl.dot >/dev/null
+	@sed '/subgraph clusterLegend/,/^}/d' build/graphviz/brdfcl.dot | tred | dot -Tsvg -o docs/architecture.svg
+	@echo "wrote docs/architecture.svg"
 
 clean:
 	@rm -rf build build-asan build-fuzz

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 # Carries the glTF Sample Renderer's sheen albedo table (assets/images/lut_sheen_E.png) into
-# host/src/parity/khronos_sheen_e_lut.inc as the 8-bit texels a WebGL upload of it holds
+# host/src/model/khronos_sheen_e_lut.inc as the 8-bit texels a WebGL upload of it holds
 # (docs/profiles.md "Tables"); scripts/engine-check reads the same PNG through read_texels().
 import argparse
 import hashlib
@@ -11,7 +11,7 @@ import zlib
 
 PNG_PATH = os.path.join("assets", "images", "lut_sheen_E.png")
 SIZE = 1024  # BRDFCL_KHRONOS_SHEEN_E_SIZE in kernels/common/material_layout.h
-OUT = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "host", "src", "parity",
+OUT = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "host", "src", "model",
                    "khronos_sheen_e_lut.inc")
 
 

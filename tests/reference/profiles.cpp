@@ -28,7 +28,7 @@ namespace {
 // The data only (the .inc is numbers and comments): row j = NdotV (j + 0.5)/16, 16 texels
 // i = roughness (i + 0.5)/16 each, each texel (A, B) as half-float bits.
 constexpr std::uint16_t kThreejsDfgBits[16 * 16 * 2] = {
-#include "../../host/src/parity/threejs_dfg_lut.inc"
+#include "../../host/src/model/threejs_dfg_lut.inc"
 };
 
 }  // namespace
@@ -78,7 +78,7 @@ namespace {
 // The data only: lut_sheen_E.png's red channel as 8-bit texels, zlib-compressed, rows = sheen
 // roughness, columns = N.V (docs/profiles.md "Tables").
 constexpr unsigned char kKhronosSheenE[] = {
-#include "../../host/src/parity/khronos_sheen_e_lut.inc"
+#include "../../host/src/model/khronos_sheen_e_lut.inc"
 };
 constexpr int kKhronosN = 1024;
 

@@ -9,7 +9,7 @@
 #include "brdfcl/render.hpp"
 #include "brdfcl/scene.hpp"
 #include "kernels/common/material_layout.h"
-#include "parity/engine_tables.hpp"
+#include "model/engine_tables.hpp"
 #include "reference/profiles.hpp"
 #include "support.hpp"
 

@@ -17,7 +17,7 @@
 #include "brdfcl/error.hpp"
 #include "eval/batch.hpp"
 #include "model/pack.hpp"
-#include "parity/engine_tables.hpp"
+#include "model/engine_tables.hpp"
 
 namespace brdfcl {
 

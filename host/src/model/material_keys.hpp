@@ -1,6 +1,6 @@
 // checkMaterialKeys: the glTF 2.0 material schema as brdfcl knows it, for catching typos (a
 // misspelt key or extension name would otherwise silently leave a factor at its default). One
-// implementation for the materials-file reader (io/materials.cpp) and the glTF loader (gltf/document.cpp).
+// implementation for the materials-file reader (model/materials.cpp) and the glTF loader (gltf/document.cpp).
 #pragma once
 #include <functional>
 #include <string>

@@ -38,7 +38,7 @@ std::string floatText(float v) {
 
 enum class Domain { Unit, NonNegative, Intensity, Finite };
 
-// The same domains and wording as readMaterials (io/materials.cpp).
+// The same domains and wording as readMaterials (model/materials.cpp).
 void checkField(float v, Domain d, std::size_t index, const std::string& field) {
   bool ok = std::isfinite(v);
   if (ok && d == Domain::Unit) ok = v >= 0.0f && v <= 1.0f;

@@ -12,8 +12,8 @@
 #include "brdfcl/error.hpp"
 #include "brdfcl/lut.hpp"
 #include "io/disk_cache.hpp"
+#include "model/engine_tables.hpp"
 #include "model/pack.hpp"
-#include "parity/engine_tables.hpp"
 
 namespace brdfcl::detail {
 namespace {

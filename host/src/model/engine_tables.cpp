@@ -1,7 +1,7 @@
 // The engine tables as floats: three.js's RG16F texel bits (threejs_dfg_lut.inc) widened with
 // the IEEE 754 binary16 rules (normals, subnormals; the table has no inf or NaN), and the Sample
 // Renderer's 8-bit sheen albedo texels (khronos_sheen_e_lut.inc, zlib) as unorm8 / 255.
-#include "parity/engine_tables.hpp"
+#include "model/engine_tables.hpp"
 
 #include <cmath>
 #include <cstdint>
@@ -16,12 +16,12 @@ namespace brdfcl {
 namespace {
 
 constexpr std::uint16_t kBits[] = {
-#include "parity/threejs_dfg_lut.inc"
+#include "model/threejs_dfg_lut.inc"
 };
 static_assert(std::size(kBits) == 2 * BRDFCL_DFG_SIZE * BRDFCL_DFG_SIZE, "16x16 texels of (A, B)");
 
 constexpr unsigned char kSheenE[] = {
-#include "parity/khronos_sheen_e_lut.inc"
+#include "model/khronos_sheen_e_lut.inc"
 };
 
 float halfToFloat(std::uint16_t h) {
