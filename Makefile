@@ -15,16 +15,17 @@ configure: deps
 build: configure
 	@cmake --build --preset $(PRESET) -j $(JOBS)
 
-# The C++ tests, the layer check on its planted violations (scripts/check-layers --self-test), the
-# engine check's harness on its own snippets (scripts/engine-check --self-test; the check itself needs
-# engine checkouts, docs/profiles.md), then the Python package's (tests/python) in build/venv-python: pinned build
-# and test tools (python/requirements.txt), the package built by `pip install .` into a persistent
-# build dir (build/python-<tag>/: only what changed recompiles).
+# The C++ tests (one shard a core, scripts/test-shards), the layer check on its planted violations
+# (scripts/check-layers --self-test), the engine check's harness on its own snippets
+# (scripts/engine-check --self-test; the check itself needs engine checkouts, docs/profiles.md), then
+# the Python package's (tests/python) in build/venv-python: pinned build and test tools
+# (python/requirements.txt), the package built by `pip install .` into a persistent build dir
+# (build/python-<tag>/: only what changed recompiles).
 PYTHON ?= /usr/bin/python3
 VENV := build/venv-python
 
 test: build
-	@build/bin/brdfcl-tests --gtest_brief=1
+	@scripts/test-shards build/bin/brdfcl-tests --gtest_brief=1
 	@scripts/engine-check --self-test >/dev/null || scripts/engine-check --self-test
 	@scripts/check-layers --self-test >/dev/null || scripts/check-layers --self-test
 	@$(MAKE) --no-print-directory test-python
@@ -46,7 +47,7 @@ test-asan: deps
 	@cmake --preset asan >/dev/null
 	@cmake --build --preset asan -j $(JOBS) --target brdfcl-tests brdfcl
 	@ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:allocator_may_return_null=1 UBSAN_OPTIONS=print_stacktrace=1 \
-	  LSAN_OPTIONS=suppressions=$(CURDIR)/tests/sanitizers/lsan.supp:print_suppressions=0 build-asan/bin/brdfcl-tests --gtest_brief=1
+	  LSAN_OPTIONS=suppressions=$(CURDIR)/tests/sanitizers/lsan.supp:print_suppressions=0 scripts/test-shards build-asan/bin/brdfcl-tests --gtest_brief=1
 
 # libFuzzer harnesses of the file readers (clang-14, ASan + UBSan, build-fuzz/), FUZZ_SECONDS
 # each; fails on any crash, leak or timeout (artifacts in build-fuzz/artifacts/).
