@@ -117,7 +117,7 @@ const char* kFullGltf = R"({
       "name": "velvet",
       "pbrMetallicRoughness": {"baseColorFactor": [0.5, 0.25, 0.125, 0.3], "metallicFactor": 0.0,
                                "roughnessFactor": 0.75},
-      "emissiveFactor": [2.0, 0.0, 0.5],
+      "emissiveFactor": [0.75, 0.0, 0.5],
       "extensions": {
         "KHR_materials_sheen": {"sheenColorFactor": [0.9, 0.8, 0.7], "sheenRoughnessFactor": 0.3},
         "KHR_materials_clearcoat": {"clearcoatFactor": 0.6, "clearcoatRoughnessFactor": 0.2},
@@ -140,7 +140,7 @@ TEST_F(Io, MaterialsReadsEveryFactor) {
   EXPECT_FLOAT_EQ(m.baseColor[2], 0.125f);
   EXPECT_FLOAT_EQ(m.metallic, 0.0f);
   EXPECT_FLOAT_EQ(m.roughness, 0.75f);
-  EXPECT_FLOAT_EQ(m.emissive[0], 2.0f);
+  EXPECT_FLOAT_EQ(m.emissive[0], 0.75f);
   EXPECT_FLOAT_EQ(m.emissive[2], 0.5f);
   EXPECT_FALSE(m.draftSheen);
   EXPECT_FLOAT_EQ(m.sheenColor[0], 0.9f);
@@ -340,7 +340,7 @@ TEST_F(Io, MaterialsAcceptBoundaryValues) {
                          "KHR_materials_sheen": {"intensityFactor": 0}}}]})",
       "m.json");
   EXPECT_EQ(ms[0].roughness, 0.0f);
-  EXPECT_EQ(ms[0].emissive[1], 1000.0f);
+  EXPECT_EQ(ms[0].emissive[1], 1.0f);  // above the schema's [0, 1]: clamped (test_emissive_factor.cpp)
   EXPECT_EQ(ms[0].anisotropyRotation, 1000.0f);
   EXPECT_TRUE(ms[0].draftSheen);
   EXPECT_EQ(ms[0].draftIntensity, 0.0f);

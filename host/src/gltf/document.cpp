@@ -8,6 +8,7 @@
 
 #include "brdfcl/error.hpp"
 #include "io/messages.hpp"
+#include "model/emissive_factor.hpp"
 #include "model/material_keys.hpp"
 
 namespace brdfcl::gltf::detail {
@@ -231,14 +232,15 @@ std::vector<Material> Document::materials(std::size_t textureCount, std::vector<
     warnings.push_back(source_ + ": " + finding);
   };
   for (std::size_t i = 0; i < list->size(); ++i) {
-    out.push_back(material(object((*list)[i], at("materials", i)), at("materials", i), textureCount));
+    out.push_back(material(object((*list)[i], at("materials", i)), at("materials", i), textureCount, strict, warnings));
     brdfcl::detail::checkMaterialKeys((*list)[i], at("materials", i), brdfcl::detail::MaterialKeyReader::GltfAsset,
                                       report);
   }
   return out;
 }
 
-Material Document::material(const json& m, const std::string& path, std::size_t textureCount) const {
+Material Document::material(const json& m, const std::string& path, std::size_t textureCount, bool strict,
+                            std::vector<std::string>& warnings) const {
   Material out;
   if (const json* n = member(m, "name"); n && n->is_string()) out.name = n->get<std::string>();
   if (const json* pbr = member(m, "pbrMetallicRoughness")) {
@@ -256,7 +258,15 @@ Material Document::material(const json& m, const std::string& path, std::size_t 
     fail(path + ".occlusionTexture.strength", "expected a number in [0, 1], got " +
                                                   brdfcl::detail::formatNumber(out.occlusionTexture.value));
   out.emissiveTexture = textureRef(m, "emissiveTexture", path, textureCount);
-  out.emissiveFactor = numbers<3>(m, "emissiveFactor", path, out.emissiveFactor, true);
+  if (const json* e = member(m, "emissiveFactor")) {
+    const std::string p = path + ".emissiveFactor";
+    if (!e->is_array() || e->size() != 3)
+      fail(p, "expected an array of 3 numbers >= 0, got " + brdfcl::detail::describeJson(*e));
+    std::array<float, 3> rgb{};
+    for (std::size_t c = 0; c < 3; ++c) rgb[c] = float(checked((*e)[c], at(p, c), "a number >= 0", nonNegative));
+    out.emissiveFactor = brdfcl::detail::clampEmissiveFactor(rgb, source_, p, strict,
+                                                             [&](const std::string& w) { warnings.push_back(w); });
+  }
   if (const json* a = member(m, "alphaMode")) {
     const std::string mode = a->is_string() ? a->get<std::string>() : "";
     if (mode == "OPAQUE") out.alphaMode = AlphaMode::Opaque;

@@ -51,7 +51,8 @@ class Document {
                                std::array<float, N> fallback, bool unitRange) const;
   TextureRef textureRef(const nlohmann::json& obj, const char* key, const std::string& path, std::size_t textureCount,
                         const char* valueKey = nullptr) const;
-  Material material(const nlohmann::json& m, const std::string& path, std::size_t textureCount) const;
+  Material material(const nlohmann::json& m, const std::string& path, std::size_t textureCount, bool strict,
+                    std::vector<std::string>& warnings) const;
   void extensionsOf(const nlohmann::json& m, const std::string& path, std::size_t textureCount, Material& out) const;
 
   const nlohmann::json& doc_;

@@ -23,6 +23,7 @@
 #include "io/input_limits.hpp"
 #include "io/glb.hpp"
 #include "io/messages.hpp"
+#include "model/emissive_factor.hpp"
 #include "model/material_keys.hpp"
 #include "brdfcl/error.hpp"
 #include "brdfcl/io.hpp"
@@ -191,8 +192,9 @@ class MaterialReader {
                [&](const json& v, const std::string& at) { p.roughness = number(v, at, Range::Unit); });
       noteTextures(*pbr, {"baseColorTexture", "metallicRoughnessTexture"}, textures);
     }
-    optional(m, "emissiveFactor", base,
-             [&](const json& v, const std::string& at) { p.emissive = color(v, at, 3, Range::NonNegative); });
+    optional(m, "emissiveFactor", base, [&](const json& v, const std::string& at) {
+      p.emissive = detail::clampEmissiveFactor(color(v, at, 3, Range::NonNegative), source_, at, strict_, warn_);
+    });
 
     if (const json* ext = object(m, "extensions", base + ".extensions")) {
       const std::string extPath = base + ".extensions";
