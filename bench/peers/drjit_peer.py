@@ -20,6 +20,7 @@ MIN_SHEEN_ALPHA = 1.0e-3
 MIN_COS = 1.0e-4
 INV_PI = 1.0 / math.pi
 LOBES = ("all", "diffuse", "specular", "sheen", "clearcoat")
+BRDFCL_DEVICE = []  # --device DEV for every brdfcl command, from --device
 
 
 def fail(message):
@@ -284,10 +285,12 @@ class Side:
         self.k = len(materials)
         self.table = {k: Float(v) for k, v in packed.items()}
         self.index = t.UInt32(np.ascontiguousarray(index, dtype=np.uint32))
+        self.sheen_e = peer.sheen_e
         dr.eval(self.L, self.V, self.index, self.table)
         dr.sync_thread()
 
-        def body(L, V, index, table):
+        def body(L, V, index, table, sheen_e):
+            peer.sheen_e = sheen_e  # an input of the frozen function, as every array it reads
             if self.k == 1:
                 m = table  # size-1 arrays: one load, broadcast over the lanes
             else:
@@ -299,7 +302,7 @@ class Side:
         self.fn = dr.freeze(body) if freeze else body
 
     def run(self):
-        f = self.fn(self.L, self.V, self.index, self.table)
+        f = self.fn(self.L, self.V, self.index, self.table, self.sheen_e)
         self.dr.eval(f)
         self.dr.sync_thread()
         return f
@@ -328,7 +331,7 @@ class Side:
 
 def brdfcl_bench(brdfcl, lobe, materials, pairs_path, indices_path, runs):
     cmd = [brdfcl, "bench", "--lobe", lobe, "--materials", str(materials), "--pairs", pairs_path,
-           "--indices", indices_path, "--runs", str(runs), "--json"]
+           "--indices", indices_path, "--runs", str(runs), "--json"] + BRDFCL_DEVICE
     r = subprocess.run(cmd, capture_output=True, text=True)
     if r.returncode != 0:
         fail(f"{' '.join(cmd)} failed: {r.stderr.strip() or r.returncode}")
@@ -340,7 +343,7 @@ def sheen_e_table(brdfcl, tmp):
     pairs, indices = write_inputs(tmp, "e", make_pairs(16, 0), np.zeros(16, np.uint32))
     out = os.path.join(tmp, "sheen_e.f32")
     cmd = [brdfcl, "bench", "--lobe", "all", "--materials", "1", "--pairs", pairs, "--runs", "1",
-           "--sheen-e-out", out, "--json"]
+           "--sheen-e-out", out, "--json"] + BRDFCL_DEVICE
     r = subprocess.run(cmd, capture_output=True, text=True)
     if r.returncode != 0:
         fail(f"{' '.join(cmd)} failed: {r.stderr.strip() or r.returncode}")
@@ -402,8 +405,8 @@ def check(a, dr, mod, sheen_e, tmp):
         with open(gltf, "w") as f:
             json.dump(gltf_materials(mats), f)
         out = os.path.join(tmp, "out.npy")
-        r = subprocess.run([a.brdfcl, "eval", "--materials", gltf, "--samples", samples, "--out", out, "--lobe", lobe],
-                           capture_output=True, text=True)
+        r = subprocess.run([a.brdfcl, "eval", "--materials", gltf, "--samples", samples, "--out", out, "--lobe", lobe]
+                           + BRDFCL_DEVICE, capture_output=True, text=True)
         if r.returncode != 0:
             fail(f"brdfcl eval --lobe {lobe} failed: {r.stderr.strip()}")
         ours = np.load(out).astype(np.float64)
@@ -443,13 +446,32 @@ def check(a, dr, mod, sheen_e, tmp):
     return worst_all, unexplained_all
 
 
+def asm_counts(lines):
+    # The figures the kernels are compared by: divisions, square roots, stack traffic (spills and
+    # their reloads), non-temporal stores, per loop body of 16 lanes (the whole kernel, in fact).
+    text = [l.split("\t", 1) for l in lines]
+    ops = [(t[0].split()[-1] if t else "", t[1] if len(t) > 1 else "") for t in text]
+    stack = lambda args: "[rsp" in args or "[rbp" in args
+    return {"instructions": len(ops),
+            "div": sum(o.startswith("vdiv") for o, _ in ops),
+            "sqrt": sum(o.startswith("vsqrt") for o, _ in ops),
+            "rsqrt": sum(o.startswith("vrsqrt") for o, _ in ops),
+            "gathers": sum(o.startswith("vgather") or o.startswith("vpgather") for o, _ in ops),
+            "stack_stores": sum(o.startswith("vmov") and stack(args.split(",")[0]) for o, args in ops),
+            "stack_loads": sum(stack(args.split(",", 1)[1]) for o, args in ops if "," in args),
+            "nontemporal_stores": sum(o.startswith("vmovnt") and "[" in args.split(",")[0] for o, args in ops)}
+
+
 def print_ir(a, dr, mod, sheen_e, tmp):
-    """Dr.Jit's kernels for each timed workload: LLVM IR (and, with --asm, the machine code it
-    compiles to) on the CPU, PTX on CUDA, for comparison with brdfcl's program binaries."""
+    """Dr.Jit's kernels for each timed workload into a folder: the LLVM IR and the machine code
+    that Dr.Jit's LLVM backend made of it (its own disassembly, logged at LogLevel.Trace on a
+    kernel-cache miss: the caller points HOME at an empty folder) on the CPU, the PTX on CUDA, for
+    comparison with brdfcl's program binaries."""
     n = 1 << 16
     planes = make_pairs(n, a.seed)
     peer = Peer(dr, mod, sheen_e)
     os.makedirs(a.print_ir, exist_ok=True)
+    summary = []
     for lobe in a.lobes:
         for k in a.materials:
             index = np.random.default_rng(a.seed).integers(0, k, n).astype(np.uint32)
@@ -458,27 +480,54 @@ def print_ir(a, dr, mod, sheen_e, tmp):
             side = Side(peer, lobe, mats, planes, index, freeze=False)
             dr.set_flag(dr.JitFlag.KernelHistory, True)
             dr.kernel_history_clear()
-            side.run()
+            trace = os.path.join(tmp, "trace.txt")
+            # Dr.Jit's log reaches stdout or stderr depending on how it was started: catch both.
+            saved = [os.dup(1), os.dup(2)]
+            with open(trace, "w") as f:
+                sys.stdout.flush()
+                sys.stderr.flush()
+                os.dup2(f.fileno(), 1)
+                os.dup2(f.fileno(), 2)
+                try:
+                    dr.set_log_level(dr.LogLevel.Trace)
+                    side.run()
+                finally:
+                    dr.set_log_level(dr.LogLevel.Warn)
+                    sys.stdout.flush()
+                    sys.stderr.flush()
+                    for fd, old in zip((1, 2), saved):
+                        os.dup2(old, fd)
+                        os.close(old)
             hist = [h for h in dr.kernel_history() if h.get("type") == dr.KernelType.JIT]
             dr.set_flag(dr.JitFlag.KernelHistory, False)
-            ext = "ptx" if a.backend == "cuda" else "ll"
-            for j, h in enumerate(hist):
-                path = os.path.join(a.print_ir, f"drjit-{a.backend}-{lobe}-k{k}-{j}.{ext}")
-                with open(path, "w") as f:
-                    f.write(h.get("ir", ""))
-                print(f"  {path}: {h.get('operation_count', '?')} operations, hash {h.get('hash', '?')}")
-                if a.backend == "llvm":
-                    asm = path[:-3] + ".s"
-                    r = subprocess.run(["llc-19", "-O3", f"-mcpu={a.mcpu}", "-o", asm, path], capture_output=True, text=True)
-                    if r.returncode == 0:
-                        print(f"  {asm}: llc-19 -O3 -mcpu={a.mcpu} (Dr.Jit compiles in-process at -O3 for the host CPU)")
+            base = os.path.join(a.print_ir, f"drjit-{a.backend}-{lobe}-k{k}")
+            ir = "\n".join(h["ir"].getvalue() if hasattr(h["ir"], "getvalue") else str(h["ir"]) for h in hist)
+            with open(base + (".ptx" if a.backend == "cuda" else ".ll"), "w") as f:
+                f.write(ir)
+            row = {"lobe": lobe, "materials": k, "kernels": len(hist),
+                   "operations": sum(h.get("operation_count", 0) for h in hist)}
+            if a.backend == "llvm":
+                with open(trace) as f:
+                    asm = [l.split("jit_llvm_disasm(): ", 1)[1].rstrip("\n") for l in f if "jit_llvm_disasm(): " in l]
+                asm = [l for l in asm if not l.startswith("=")]
+                with open(base + ".s", "w") as f:
+                    f.write("\n".join(asm) + "\n")
+                if not asm:
+                    print(f"  {base}.s: empty (the kernel came from Dr.Jit's cache; run with HOME at an empty folder)")
+                row.update(asm_counts(asm))
+            summary.append(row)
+            print(f"  {base}.*: " + ", ".join(f"{k2} {v}" for k2, v in row.items() if k2 not in ("lobe", "materials")))
+    with open(os.path.join(a.print_ir, f"drjit-{a.backend}-summary.json"), "w") as f:
+        json.dump(summary, f, indent=2)
 
 
 def main():
     ap = argparse.ArgumentParser(description="brdfcl against the same maths in Dr.Jit")
     ap.add_argument("--brdfcl", default="build/bin/brdfcl")
     ap.add_argument("--backend", choices=["llvm", "cuda"], default="llvm")
-    ap.add_argument("--pairs", type=int, default=1 << 22, help="pairs per timed run (default 4194304)")
+    ap.add_argument("--pairs", type=int, help="pairs per timed run (default 4194304 on llvm, 16777216 on cuda)")
+    ap.add_argument("--device", help="brdfcl's OpenCL device, index or name substring "
+                                     "(default $BRDFCL_DEVICE, else 'NVIDIA' on cuda and brdfcl's default on llvm)")
     ap.add_argument("--lobes", default="all,sheen,specular", help="workloads to time, comma-separated")
     ap.add_argument("--materials", default="1,256", help="material counts to time, comma-separated")
     ap.add_argument("--runs", type=int, default=7, help="timed runs per side per round; median reported")
@@ -493,16 +542,25 @@ def main():
     ap.add_argument("--materials-max", type=int, default=256, help="materials in the check")
     ap.add_argument("--tolerance", type=float, default=1e-5)
     ap.add_argument("--abs-floor", type=float, default=1e-6, help="relative errors are taken against max(|f|, this)")
-    ap.add_argument("--print-ir", metavar="DIR", help="write Dr.Jit's kernels (LLVM IR and assembly, or PTX) to DIR and stop")
-    ap.add_argument("--mcpu", default="native", help="--print-ir on llvm: the CPU llc-19 compiles the IR for")
+    ap.add_argument("--print-ir", metavar="DIR",
+                    help="write Dr.Jit's kernels (LLVM IR and machine code, or PTX) of the timed workloads to DIR and stop")
     ap.add_argument("--no-freeze", action="store_true", help="time tracing too (dr.freeze off)")
     a = ap.parse_args()
     a.lobes = a.lobes.split(",")
+    if a.pairs is None:
+        a.pairs = 1 << 24 if a.backend == "cuda" else 1 << 22
+    if a.device is None and a.backend == "cuda" and not os.environ.get("BRDFCL_DEVICE"):
+        a.device = "NVIDIA"
+    global BRDFCL_DEVICE
+    BRDFCL_DEVICE = ["--device", a.device] if a.device else []
     a.materials = [int(x) for x in a.materials.split(",")]
     for lobe in a.lobes:
         if lobe not in ("all", "sheen", "specular", "clearcoat"):
             fail(f"unknown --lobes value '{lobe}'; use all, sheen, specular or clearcoat")
 
+    if a.print_ir and a.backend == "llvm" and not os.environ.get("DRJIT_PEER_KEEP_HOME"):
+        # Dr.Jit logs a kernel's machine code only when it compiles it: an empty kernel cache.
+        os.environ["HOME"] = tempfile.mkdtemp(prefix="drjit-home-")
     try:
         import drjit as dr
     except Exception as e:
