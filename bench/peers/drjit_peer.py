@@ -405,7 +405,7 @@ def check(a, dr, mod, sheen_e, tmp):
         pairs, indices = write_inputs(tmp, "check", planes, index)
         samples = os.path.join(tmp, "samples.npy")
         np.save(samples, np.concatenate([index[None, :].astype(np.float32), planes]).T.copy())
-        mats = brdfcl_bench(a.brdfcl, workload, k, pairs, indices, 1)["materials"]
+        mats = brdfcl_bench(a.brdfcl, workload, k, pairs, indices, 1)["material_params"]
         gltf = os.path.join(tmp, f"{workload}.gltf")
         with open(gltf, "w") as f:
             json.dump(gltf_materials(mats), f)
@@ -481,7 +481,7 @@ def print_ir(a, dr, mod, sheen_e, tmp):
         for k in a.materials:
             index = np.random.default_rng(a.seed).integers(0, k, n).astype(np.uint32)
             pairs, indices = write_inputs(tmp, "ir", planes, index)
-            mats = brdfcl_bench(a.brdfcl, lobe, k, pairs, indices, 1)["materials"]
+            mats = brdfcl_bench(a.brdfcl, lobe, k, pairs, indices, 1)["material_params"]
             side = Side(peer, lobe, mats, planes, index, freeze=False)
             dr.set_flag(dr.JitFlag.KernelHistory, True)
             dr.kernel_history_clear()
@@ -630,7 +630,7 @@ def timing(a, dr, mod, sheen_e, tmp):
         pairs, indices = write_inputs(tmp, f"pairs-{k}", planes, index)
         for lobe in a.lobes:
             first = brdfcl_bench(a.brdfcl, lobe, k, pairs, indices, a.runs)
-            side = Side(peer, lobe, first["materials"], planes, index, freeze=not a.no_freeze)
+            side = Side(peer, lobe, first["material_params"], planes, index, freeze=not a.no_freeze)
             side.run()  # traces and compiles; the frozen function records here
             side.run()
             # On a GPU, brdfcl's launch (profiling event) against Dr.Jit's kernel time; on the CPU

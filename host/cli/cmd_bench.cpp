@@ -143,9 +143,12 @@ void reportPairs(const BenchArgs& a, Runtime& rt, const bench::Bench& b, double 
                               {"launch_seconds_median", launch},
                               {"launch_samples_per_second", double(a.n) / launch},
                               {"material0", materialJson(b.workload().materials[0])}};
-    // Every material, so that an outside peer evaluates the same ones by the same indices.
-    nlohmann::json& all = j["materials"] = nlohmann::json::array();
-    for (const auto& m : b.workload().materials) all.push_back(materialJson(m));
+    // With --indices, every material, so that the outside peer evaluates the same ones by the same
+    // indices (without, the list would only lengthen the output: material0 describes K = 1).
+    if (!a.indices.empty()) {
+      nlohmann::json& all = j["material_params"] = nlohmann::json::array();
+      for (const auto& m : b.workload().materials) all.push_back(materialJson(m));
+    }
     std::printf("%s\n", j.dump(2).c_str());
   } else {
     fmt::print("brdfcl bench: lobe {}, {} pairs from '{}' over {} materials, median of {} runs, on {}\n",
@@ -267,7 +270,7 @@ void addBenchCommand(CLI::App& app) {
                   "times the kernel only (no peers) and sets --n from the file");
   cmd->add_option("--indices", args->indices,
                   "with --pairs: raw file of one uint32 material index per pair (each below --materials) "
-                  "instead of random indices");
+                  "instead of random indices; --json then lists every material");
   cmd->add_option("--sheen-e-out", args->sheenEOut,
                   "with --pairs: also write the sheen albedo table E the kernel reads, raw float32, "
                   "320 x 320 row-major (rows: sheenRoughness t^2, columns: N.V s^2, s and t uniform on [0, 1])");

@@ -84,7 +84,7 @@ TEST(BenchPeerInputs, GivenIndicesPickTheKernelsMaterials) {
   EXPECT_THROW(b.setMaterialIndices(std::vector<std::uint32_t>(n - 1, 0)), Error);
 }
 
-// --sheen-e-out writes the table the evaluator reads, and the JSON lists every material.
+// --sheen-e-out writes the table the evaluator reads, and with --indices the JSON lists every material.
 TEST(BenchPeerInputs, TheCliWritesTheSheenTableAndEveryMaterial) {
   ScratchDir dir("peer-inputs");
   const std::size_t n = 64, k = 3;
@@ -97,9 +97,15 @@ TEST(BenchPeerInputs, TheCliWritesTheSheenTableAndEveryMaterial) {
                                 "--json"});
   ASSERT_EQ(r.status, 0) << r.describe();
   const auto j = nlohmann::json::parse(r.out);
-  ASSERT_EQ(j.at("materials").size(), k);
-  EXPECT_EQ(j.at("materials")[0], j.at("material0"));
-  EXPECT_NE(j.at("materials")[1], j.at("materials")[0]);
+  EXPECT_EQ(j.at("materials"), k);  // the count, as without --indices
+  ASSERT_EQ(j.at("material_params").size(), k);
+  EXPECT_EQ(j.at("material_params")[0], j.at("material0"));
+  EXPECT_NE(j.at("material_params")[1], j.at("material_params")[0]);
+  // Without --indices the run has no peer to feed: material0 alone.
+  const RunResult plain = cli(dir, {"bench", "--lobe", "all", "--materials", std::to_string(k), "--pairs",
+                                    dir.path("pairs.f32"), "--runs", "1", "--json"});
+  ASSERT_EQ(plain.status, 0) << plain.describe();
+  EXPECT_FALSE(nlohmann::json::parse(plain.out).contains("material_params"));
 
   const std::string e = brdfcl::test::slurp(dir.path("e.f32"));
   Evaluator ev(runtime(), EvalOptions{});
