@@ -319,9 +319,9 @@ class Side:
         """CUDA: the kernels' own time from Dr.Jit's history (launch to completion on the device)."""
         dr = self.dr
         dr.set_flag(dr.JitFlag.KernelHistory, True)
-        dr.kernel_history_clear()
         t = []
         for _ in range(runs):
+            dr.kernel_history_clear()
             t0 = time.perf_counter()
             self.run()
             wall = time.perf_counter() - t0
