@@ -65,12 +65,16 @@ bench: build
 	@mkdir -p out
 	@build/bin/brdfcl-bench --benchmark_out=out/bench.json --benchmark_out_format=json
 
-# Mitsuba 3 as a peer (docs/performance.md): a venv in build/venv-peers with mitsuba from PyPI and
-# Debian's libllvm19; needs the network the first time. Not part of `make test`.
+# Mitsuba 3, then the spec material written in Dr.Jit, as peers (docs/performance.md): a venv in
+# build/venv-peers with mitsuba (and so drjit) from PyPI and Debian's libllvm19; needs the network
+# the first time. The Dr.Jit peer runs on its CUDA backend too where an NVIDIA GPU is (exit 3: none).
+# Not part of `make test`.
 bench-peers: configure
 	@cmake --build --preset $(PRESET) -j $(JOBS) --target brdfcl
 	@mkdir -p out
 	@bench/peers/run-mitsuba-peer --check --json out/bench-peers.json
+	@bench/peers/run-drjit-peer --check --mitsuba-json out/bench-peers.json --json out/bench-peers-drjit.json
+	@bench/peers/run-drjit-peer --backend cuda --check --json out/bench-peers-drjit-cuda.json || test $$? -eq 3
 
 # docs/architecture.svg: the host library's modules and their links from CMake's own graph
 # (cmake --graphviz, filtered by CMakeGraphVizOptions.cmake), without the legend and without the

@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "brdfcl/error.hpp"
+#include "brdfcl/io.hpp"
 #include "commands.hpp"
 #include "host/src/eval/workload.hpp"
 #include "peers_module.hpp"
@@ -39,7 +40,7 @@ struct BenchArgs {
   std::string lobe = "all", device, profile = "spec";
   std::size_t n = std::size_t(1) << 22;
   std::size_t materials = bench::kDefaultMaterials;
-  std::string pairs;
+  std::string pairs, indices, sheenEOut;
   int runs = 7;
   bool json = false;
 };
@@ -57,6 +58,26 @@ std::vector<float> readPairs(const std::string& path) {
   in.read(reinterpret_cast<char*>(planes.data()), std::streamsize(bytes));
   if (!in) throw Error(fmt::format("--pairs '{}': cannot read: {}", path, std::strerror(errno)));
   return planes;
+}
+
+// One little-endian uint32 material index per pair of the --pairs file, each below --materials:
+// an outside peer (bench/peers/drjit_peer.py) then gathers the very materials the kernel gathers.
+std::vector<std::uint32_t> readIndices(const std::string& path, std::size_t n, std::size_t materials) {
+  std::ifstream in(path, std::ios::binary | std::ios::ate);
+  if (!in || in.tellg() < 0) throw Error(fmt::format("--indices '{}': cannot read: {}", path, std::strerror(errno)));
+  const auto bytes = std::size_t(in.tellg());
+  if (bytes != 4 * n)
+    throw Error(fmt::format("--indices '{}' holds {} bytes; expected {} uint32 material indices, one per pair of --pairs",
+                            path, bytes, n));
+  std::vector<std::uint32_t> index(n);
+  in.seekg(0);
+  in.read(reinterpret_cast<char*>(index.data()), std::streamsize(bytes));
+  if (!in) throw Error(fmt::format("--indices '{}': cannot read: {}", path, std::strerror(errno)));
+  for (std::size_t i = 0; i < n; ++i)
+    if (index[i] >= materials)
+      throw Error(fmt::format("--indices '{}': pair {} has material index {}, not below --materials {}", path, i,
+                              index[i], materials));
+  return index;
 }
 
 nlohmann::json materialJson(const MaterialParams& m) {
@@ -111,7 +132,7 @@ void benchProfile(const BenchArgs& a, Profile profile) {
 void reportPairs(const BenchArgs& a, Runtime& rt, const bench::Bench& b, double kernel, double launch, double firstRun) {
   const double sps = double(a.n) / kernel;
   if (a.json) {
-    const nlohmann::json j = {{"samples_per_second", sps},
+    nlohmann::json j = {{"samples_per_second", sps},
                               {"n", a.n},
                               {"lobe", a.lobe},
                               {"materials", a.materials},
@@ -122,6 +143,12 @@ void reportPairs(const BenchArgs& a, Runtime& rt, const bench::Bench& b, double 
                               {"launch_seconds_median", launch},
                               {"launch_samples_per_second", double(a.n) / launch},
                               {"material0", materialJson(b.workload().materials[0])}};
+    // With --indices, every material, so that the outside peer evaluates the same ones by the same
+    // indices (without, the list would only lengthen the output: material0 describes K = 1).
+    if (!a.indices.empty()) {
+      nlohmann::json& all = j["material_params"] = nlohmann::json::array();
+      for (const auto& m : b.workload().materials) all.push_back(materialJson(m));
+    }
     std::printf("%s\n", j.dump(2).c_str());
   } else {
     fmt::print("brdfcl bench: lobe {}, {} pairs from '{}' over {} materials, median of {} runs, on {}\n",
@@ -134,9 +161,11 @@ void reportPairs(const BenchArgs& a, Runtime& rt, const bench::Bench& b, double 
 // The kernel, and unless --pairs, its ratios to the C++ peers, the memory bound and a small eval.
 void benchKernel(BenchArgs& a) {
   std::vector<float> pairs;
+  std::vector<std::uint32_t> indices;
   if (!a.pairs.empty()) {
     pairs = readPairs(a.pairs);  // before the clock: file I/O is no part of the kernel's time
     a.n = pairs.size() / 6;
+    if (!a.indices.empty()) indices = readIndices(a.indices, a.n, a.materials);
   }
   // The peers' module, when the run compares with them, before any work: a build without it fails at once.
   const peers::ModuleTable* peerModule = pairs.empty() ? &peersModule() : nullptr;
@@ -144,6 +173,7 @@ void benchKernel(BenchArgs& a) {
   Runtime rt(a.device);
   bench::Bench b(rt, a.lobe, a.n, 1, a.materials);
   if (!pairs.empty()) b.setDirections(pairs);
+  if (!indices.empty()) b.setMaterialIndices(indices);
   b.runKernel();  // warm-up; also builds (or loads from PoCL's cache) the program
   const double firstRun = std::chrono::duration<double>(Clock::now() - t0).count();
   // The launch alone, from its profiling event: on a GPU the run also copies the result back
@@ -156,6 +186,11 @@ void benchKernel(BenchArgs& a) {
   std::sort(launches.begin(), launches.end());
   const double launch = launches[launches.size() / 2];
   if (!pairs.empty()) {
+    if (!a.sheenEOut.empty()) {
+      // The table the kernel read, for an outside peer of the same maths (bench/peers/drjit_peer.py).
+      const SheenAlbedoTable& e = b.evaluator().sheenAlbedo();
+      writeOutput(a.sheenEOut, e.values.data(), e.values.size() * sizeof(float));
+    }
     reportPairs(a, rt, b, kernel, launch, firstRun);
     return;
   }
@@ -233,6 +268,12 @@ void addBenchCommand(CLI::App& app) {
   cmd->add_option("--pairs", args->pairs,
                   "raw file of 6 float32 planes (L.xyz, V.xyz) to evaluate instead of random pairs; "
                   "times the kernel only (no peers) and sets --n from the file");
+  cmd->add_option("--indices", args->indices,
+                  "with --pairs: raw file of one uint32 material index per pair (each below --materials) "
+                  "instead of random indices; --json then lists every material");
+  cmd->add_option("--sheen-e-out", args->sheenEOut,
+                  "with --pairs: also write the sheen albedo table E the kernel reads, raw float32, "
+                  "320 x 320 row-major (rows: sheenRoughness t^2, columns: N.V s^2, s and t uniform on [0, 1])");
   cmd->add_option("--runs", args->runs, "timed runs after the warm-up; the median is reported (default 7)");
   cmd->add_option("--device", args->device, "device index or name substring (default $BRDFCL_DEVICE, then 0)");
   cmd->add_option("--profile", args->profile,
@@ -246,6 +287,13 @@ void addBenchCommand(CLI::App& app) {
     if (args->runs < 1 || args->runs > 1000) throw Error(fmt::format("--runs {} is out of range; use 1 to 1000", args->runs));
     if (args->materials == 0 || args->materials > (std::size_t(1) << 20))
       throw Error(fmt::format("--materials {} is out of range; use 1 to 1048576", args->materials));
+    if (!args->indices.empty() && args->pairs.empty())
+      throw Error("--indices gives the material of each pair of --pairs; give --pairs FILE too");
+    if (!args->sheenEOut.empty()) {
+      if (args->pairs.empty()) throw Error("--sheen-e-out goes with --pairs, the outside peer's run; give --pairs FILE too");
+      checkOutputPath("--sheen-e-out", args->sheenEOut);
+      checkDistinctFiles({{"--pairs", args->pairs}, {"--indices", args->indices}, {"--sheen-e-out", args->sheenEOut, true}});
+    }
     if (profile != Profile::Spec) {
       if (!args->pairs.empty()) throw Error("--pairs and --profile are separate measurements; give one");
       benchProfile(*args, profile);

@@ -102,6 +102,15 @@ void Bench::setDirections(const std::vector<float>& planes) {
   for (int k = 0; k < 6; ++k) std::copy(planes.begin() + k * n_, planes.begin() + (k + 1) * n_, batch_->direction(k));
 }
 
+void Bench::setMaterialIndices(const std::vector<std::uint32_t>& index) {
+  if (index.size() != n_) throw Error("material indices hold " + std::to_string(index.size()) + " values; expected " + std::to_string(n_));
+  for (std::uint32_t k : index)
+    if (k >= workload_.materials.size())
+      throw Error("material index " + std::to_string(k) + " is not below the material count " +
+                  std::to_string(workload_.materials.size()));
+  std::copy(index.begin(), index.end(), batch_->materialIndex());
+}
+
 double Bench::peerDeviation() const {
   double worst = 0;
   for (int c = 0; c < 3; ++c) {

@@ -49,6 +49,8 @@ class Bench {
   // Replaces the random directions with given ones, six planes of size() floats (L.xyz, V.xyz),
   // so that an outside peer (bench/peers/mitsuba_peer.py) and the kernel evaluate the same pairs.
   void setDirections(const std::vector<float>& planes);
+  // Replaces the random material indices with given ones, size() values below the material count.
+  void setMaterialIndices(const std::vector<std::uint32_t>& index);
 
  private:
   Workload workload_;
