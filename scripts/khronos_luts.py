@@ -25,12 +25,8 @@ def _paeth(a, b, c):
     return a if pa <= pb and pa <= pc else (b if pb <= pc else c)
 
 
-def read_texels(path):
-    """(width, height, red channel as 8-bit unorm values, row-major, first PNG row first).
-    A 16-bit channel keeps its high byte: the browser decodes the PNG to 8 bits per channel
-    before texImage2D(RGBA8, UNSIGNED_BYTE) (libpng's png_set_strip_16)."""
-    with open(path, "rb") as f:
-        data = f.read()
+def png_rows(data, path):
+    """(width, height, bytes per pixel, unfiltered rows) of a PNG file's bytes; `path` names it in errors."""
     if data[:8] != b"\x89PNG\r\n\x1a\n":
         raise PngError("%s is not a PNG file" % path)
     pos, idat, hdr = 8, [], None
@@ -57,7 +53,7 @@ def read_texels(path):
     if len(raw) != h * (stride + 1):
         raise PngError("%s: image data is %d bytes, expected %d" % (path, len(raw), h * (stride + 1)))
     prev = bytearray(stride)
-    red = bytearray()
+    rows = []
     for y in range(h):
         f = raw[y * (stride + 1)]
         line = bytearray(raw[y * (stride + 1) + 1:(y + 1) * (stride + 1)])
@@ -78,9 +74,19 @@ def read_texels(path):
                 line[x] = (line[x] + _paeth(a, prev[x], c)) & 255
         elif f != 0:
             raise PngError("%s: unknown row filter %d" % (path, f))
-        red += line[0::bpp]  # the red sample's first (high) byte
+        rows.append(bytes(line))
         prev = line
-    return w, h, bytes(red)
+    return w, h, bpp, rows
+
+
+def read_texels(path):
+    """(width, height, red channel as 8-bit unorm values, row-major, first PNG row first).
+    A 16-bit channel keeps its high byte: the browser decodes the PNG to 8 bits per channel
+    before texImage2D(RGBA8, UNSIGNED_BYTE) (libpng's png_set_strip_16)."""
+    with open(path, "rb") as f:
+        data = f.read()
+    w, h, bpp, rows = png_rows(data, path)
+    return w, h, b"".join(line[0::bpp] for line in rows)  # the red sample's first (high) byte
 
 
 def main():

@@ -72,5 +72,9 @@ typedef struct brdfcl_material {
 /* --profile khronos reads, after the DFG table, the Sample Renderer's lut_sheen_E.png: size^2
    floats (unorm8 / 255), rows = sheen roughness, columns = N.V (docs/profiles.md "Tables"). */
 #define BRDFCL_KHRONOS_SHEEN_E_SIZE 1024
+/* --profile babylon reads, after the DFG table, Babylon's environment BRDF texture: size^2 texels
+   of 3 floats (.x = B, .y = A + B, .b = sheen albedo), rows = perceptual roughness, columns = N.V
+   (docs/profiles.md "Tables"). */
+#define BRDFCL_BABYLON_BRDF_SIZE 256
 
 #endif

@@ -115,6 +115,53 @@ double khronosSheenE(double NdotV, double sheenRoughness) {
   return bottom * (1.0 - wv) + top * wv;
 }
 
+namespace {
+// The data only: Babylon's BRDF texture decoded from RGBD, (r, g, b) half-float bits per texel
+// little-endian, zlib-compressed, rows = perceptual roughness, columns = N.V (docs/profiles.md "Tables").
+constexpr unsigned char kBabylonBrdf[] = {
+#include "../../host/src/model/babylon_brdf_lut.inc"
+};
+constexpr int kBabylonN = 256;
+
+const std::vector<double>& babylonTexels() {
+  static const std::vector<double> t = [] {
+    std::vector<unsigned char> b(std::size_t(kBabylonN) * kBabylonN * 3 * 2);
+    uLongf n = uLongf(b.size());
+    if (uncompress(b.data(), &n, kBabylonBrdf, uLong(sizeof kBabylonBrdf)) != Z_OK || n != b.size())
+      throw std::logic_error("babylon_brdf_lut.inc does not inflate to 256x256 texels of 3 half floats");
+    std::vector<double> v(b.size() / 2);
+    for (std::size_t i = 0; i < v.size(); ++i) v[i] = halfToDouble(std::uint16_t(b[2 * i] | (b[2 * i + 1] << 8)));
+    return v;
+  }();
+  return t;
+}
+}  // namespace
+
+std::array<double, 3> babylonBrdf(double NdotV, double roughness) {
+  // texture2D(environmentBrdfSampler, vec2(N.V, r)) with BILINEAR and CLAMP: texel centres at
+  // (i + 0.5)/256, neighbours clamped to the edge.
+  auto split = [](double u, int& i0, int& i1, double& w) {
+    const double x = u * kBabylonN - 0.5;
+    const double fl = std::floor(x);
+    w = x - fl;
+    i0 = std::clamp(static_cast<int>(fl), 0, kBabylonN - 1);
+    i1 = std::clamp(static_cast<int>(fl) + 1, 0, kBabylonN - 1);
+  };
+  int i0, i1, j0, j1;
+  double wu, wv;
+  split(NdotV, i0, i1, wu);
+  split(roughness, j0, j1, wv);
+  const auto& t = babylonTexels();
+  auto texel = [&](int i, int j, int ch) { return t[(std::size_t(j) * kBabylonN + std::size_t(i)) * 3 + std::size_t(ch)]; };
+  std::array<double, 3> out{};
+  for (int ch = 0; ch < 3; ++ch) {
+    const double bottom = texel(i0, j0, ch) * (1.0 - wu) + texel(i1, j0, ch) * wu;
+    const double top = texel(i0, j1, ch) * (1.0 - wu) + texel(i1, j1, ch) * wu;
+    out[ch] = bottom * (1.0 - wv) + top * wv;
+  }
+  return out;
+}
+
 double threejsDfgEss(double roughness, double NdotV) {
   const auto ab = threejsDfg(roughness, NdotV);
   return ab[0] + ab[1];
@@ -490,13 +537,13 @@ Lobes babylon(const Mat& q, const Geometry& g) {
   } else {
     S = D_GGXp(alphaG, g.NdotH) * V_GGXp(alphaG, g.NdotL, g.NdotV);
   }
-  const double Ess = threejsDfgEss(q.r, g.NdotV);  // the raw roughness, not alphaG's
+  const double Ess = babylonBrdf(g.NdotV, q.r)[1];  // .y at the raw roughness, not alphaG's
 
   double sh = 1.0, sheenDV = 0.0;
   if (q.sheen) {
     const double alphaGS = q.rs * q.rs + 0.0005;
     sheenDV = D_CharlieS(alphaGS, 1.0 - g.NdotH * g.NdotH) * V_Neubelt(g.NdotL, g.NdotV);
-    sh = 1.0 - q.maxC * E_CN(g.NdotV, q.rs);  // view only, raw r_s
+    sh = 1.0 - q.maxC * babylonBrdf(g.NdotV, q.rs)[2];  // .b, view only, raw r_s
   }
 
   double Fc = 0.0, coat = 0.0, EssC = 1.0;
@@ -504,7 +551,7 @@ Lobes babylon(const Mat& q, const Geometry& g) {
     const double alphaGC = q.rc * q.rc + 0.0005;
     Fc = q.cc * F_SchlickP(0.04, 1.0, g.VdotH);
     coat = Fc * D_GGXp(alphaGC, g.NdotH) * 0.25 / (g.VdotH * g.VdotH);
-    EssC = threejsDfgEss(q.rc, g.NdotV);  // the coat's own raw roughness
+    EssC = babylonBrdf(g.NdotV, q.rc)[1];  // the coat's own raw roughness
   }
 
   Lobes out;
@@ -513,7 +560,8 @@ Lobes babylon(const Mat& q, const Geometry& g) {
     const double F = F_SchlickP(f0, 1.0, g.VdotH);
     const double ec = 1.0 + f0 * (1.0 / Ess - 1.0);
     // Legacy specular energy conservation: the albedo is b (1 - f0_ior)(1 - m), no angle.
-    out.diffuse[i] = (1.0 - Fc) * sh * (1.0 - f0ior) * (1.0 - q.m) * q.b[i] / kPi;
+    // finalDiffuse = max(diffuseBase * surfaceAlbedo, 0): the sheen scaling can be negative.
+    out.diffuse[i] = std::max((1.0 - Fc) * sh * (1.0 - f0ior) * (1.0 - q.m) * q.b[i] / kPi, 0.0);
     out.specular[i] = (1.0 - Fc) * sh * F * S * ec;
     out.sheen[i] = (1.0 - Fc) * q.c[i] * sheenDV;
     // The coat's multiscatter factor with the base's F0, per channel.

@@ -53,6 +53,11 @@ double threejsDfgEss(double roughness, double NdotV);
 // bilinear in (u = NdotV, v = sheen roughness), texel centres at (i + 0.5)/1024, clamp to edge.
 double khronosSheenE(double NdotV, double sheenRoughness);
 
+// Babylon's environment BRDF texture (host/src/model/babylon_brdf_lut.inc): (.x, .y, .b) of
+// texture(environmentBrdfSampler, vec2(N.V, r)), bilinear with clamp, texels decoded from RGBD
+// and held as half floats; .x = B, .y = A + B = E_ss, .b = the sheen albedo.
+std::array<double, 3> babylonBrdf(double NdotV, double roughness);
+
 // MaterialX's mx_ggx_dir_albedo_analytic rational fit: (A, B) at (mu = NdotV, alpha), each
 // clamped to [0, 1]. E_ggx(F0, F90) = F0 A + F90 B.
 std::array<double, 2> mxGgxAlbedoFit(double mu, double alpha);

@@ -244,7 +244,7 @@ TEST(ProfileReference, BabylonDiffersFromSpecAndConvergesWithRoughness) {
     const double alpha = double(m.roughness) * m.roughness, alphaG = alpha + 0.0005;
     const double spec = ref::profileBrdf(m, Profile::Spec, Lobe::Specular, kN, kN)[0];
     const double bab = ref::profileBrdf(m, Profile::Babylon, Lobe::Specular, kN, kN)[0];
-    const double ec = 1.0 + 0.04 * (1.0 / ref::threejsDfgEss(m.roughness, 1.0) - 1.0);
+    const double ec = 1.0 + 0.04 * (1.0 / ref::babylonBrdf(1.0, m.roughness)[1] - 1.0);
     // 2e-7: babylon's N.V is 1 + 1e-7 (absEps), which moves its V_GGX by up to 1e-7; D's
     // (alpha^2 - 1) + 1 at N.H = 1 keeps ~1e-16 / alpha^2 of relative precision.
     EXPECT_LE(relDiff(bab, spec * std::pow(alpha / alphaG, 2.0) * ec), 2e-7) << "r " << r;
@@ -267,14 +267,15 @@ TEST(ProfileReference, BabylonDiffersFromSpecAndConvergesWithRoughness) {
 }
 
 // Closed form of the coat at L = V = N: cc 0.04 D_GGX(r_c^2 + 0.0005, 1) 0.25 (Kelemen V at V.H = 1)
-// times the coat's multiscatter factor 1 + f0 (1/E_ss(r_c, N.V) - 1), f0 = 1 for the default metal.
+// times the coat's multiscatter factor 1 + f0 (1/E_ss(N.V, r_c) - 1), f0 = 1 for the default metal,
+// E_ss = .y of Babylon's BRDF texture.
 TEST(ProfileReference, BabylonCoatClosedFormAtNormal) {
   MaterialParams m;
   m.clearcoat = 0.7f;
   m.clearcoatRoughness = 0.3f;
   const double aG = double(m.clearcoatRoughness) * m.clearcoatRoughness + 0.0005;
   const double want =
-      double(m.clearcoat) * 0.04 / (kPi * aG * aG) * 0.25 / ref::threejsDfgEss(m.clearcoatRoughness, 1.0 + 1e-7);
+      double(m.clearcoat) * 0.04 / (kPi * aG * aG) * 0.25 / ref::babylonBrdf(1.0 + 1e-7, m.clearcoatRoughness)[1];
   EXPECT_LE(relDiff(ref::profileBrdf(m, Profile::Babylon, Lobe::Clearcoat, kN, kN)[0], want), 1e-12);
 }
 

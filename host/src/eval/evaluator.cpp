@@ -166,14 +166,18 @@ Evaluator::Batch Evaluator::prepare(const std::vector<MaterialParams>& materials
     b.table = table.values;
     b.tableSize = int(table.width);
   }
-  // Engine profiles read three.js's DFG table right after the E table, and khronos the Sample
-  // Renderer's sheen albedo texture after that (docs/profiles.md "Tables").
+  // Engine profiles read three.js's DFG table right after the E table, khronos the Sample
+  // Renderer's sheen albedo texture after that, babylon its BRDF texture (docs/profiles.md "Tables").
   if (options_.profile != Profile::Spec) {
     const auto& dfg = threejsDfgTable();
     b.table.insert(b.table.end(), dfg.begin(), dfg.end());
   }
   if (options_.profile == Profile::Khronos && features.ratifiedSheen) {
     const auto& lut = khronosSheenETable();
+    b.table.insert(b.table.end(), lut.begin(), lut.end());
+  }
+  if (options_.profile == Profile::Babylon) {
+    const auto& lut = babylonBrdfTable();
     b.table.insert(b.table.end(), lut.begin(), lut.end());
   }
   b.shape = laneShape(rt_.info());

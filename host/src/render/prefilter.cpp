@@ -165,11 +165,13 @@ std::shared_ptr<const PreparedLight> prepareLight(Runtime& rt, const Environment
     s.dfg = readOnly(ctx, dfg);
     const auto e = cachedSheenAlbedo(rt, table.sheenDistribution, table.sheenVisibility);
     std::vector<float> tables = e.values;
-    // Engine profiles read three.js's DFG table right after the E table, and khronos the Sample
-    // Renderer's sheen albedo texture after that (docs/profiles.md "Tables").
+    // Engine profiles read three.js's DFG table right after the E table, khronos the Sample
+    // Renderer's sheen albedo texture after that, babylon its BRDF texture (docs/profiles.md "Tables").
     if (options.profile != Profile::Spec) tables.insert(tables.end(), threejsDfgTable().begin(), threejsDfgTable().end());
     if (options.profile == Profile::Khronos)
       tables.insert(tables.end(), khronosSheenETable().begin(), khronosSheenETable().end());
+    if (options.profile == Profile::Babylon)
+      tables.insert(tables.end(), babylonBrdfTable().begin(), babylonBrdfTable().end());
     s.sheenE = readOnly(ctx, tables);
     s.sheenESize = int(e.width);
     std::vector<float> fl(kFresnelLambertSize);

@@ -18,7 +18,8 @@ BRDF_FN engine_geometry babylon_geometry(vec3w L, vec3w V) {
 
 BRDF_FN rgbw brdf_profile(const material_lanes m, vec3w L, vec3w V, vec3w Lc, vec3w Vc,
                           __global const float* tables, int e_size) {
-  __global const float* dfg = tables + e_size * e_size;
+  /* Babylon's BRDF texture: after the E table and three.js's DFG table (material_layout.h). */
+  __global const float* lut = tables + e_size * e_size + 2 * BRDFCL_DFG_SIZE * BRDFCL_DFG_SIZE;
   engine_geometry g = babylon_geometry(L, V);
 #if BRDFCL_HAS_ANISOTROPY
   realw S = D_BurleyRotated(m, g, g.hz) * 0.5f / Lambda_HeitzRotated(m, g, L, V);
@@ -26,7 +27,7 @@ BRDF_FN rgbw brdf_profile(const material_lanes m, vec3w L, vec3w V, vec3w Lc, ve
   realw S = D_GGX_HalfAngle(g.sin2, g.cos2, m.alpha) * 0.5f / Lambda_SmithSum(g.NdotL, g.NdotV, m.alpha);
 #endif
   rgbw f0 = f0_metallic(m);
-  realw ec_k = 1.0f / Ess_ThreeJs(dfg, m.roughness, g.NdotV) - 1.0f;
+  realw ec_k = 1.0f / BRDF_Babylon(lut, g.NdotV, m.roughness, 1) - 1.0f;
   rgbw specular = {F_Schlick90(f0.r, 1.0f, g.s5) * S * (1.0f + f0.r * ec_k), F_Schlick90(f0.g, 1.0f, g.s5) * S * (1.0f + f0.g * ec_k),
                    F_Schlick90(f0.b, 1.0f, g.s5) * S * (1.0f + f0.b * ec_k)};
   /* Legacy energy conservation: the albedo loses the dielectric F0 once, with no angle. */
@@ -36,7 +37,8 @@ BRDF_FN rgbw brdf_profile(const material_lanes m, vec3w L, vec3w V, vec3w Lc, ve
 #if BRDFCL_HAS_SHEEN
   {
     sheen = sheen_coloured(m, D_Charlie(g.sin2, g.cos2, m.sheen_alpha) * V_Ashikhmin(g.NdotL, g.NdotV));
-    realw sh = sheen_scaling_view(m, tables, e_size, g.NdotV);
+    /* SHEEN_ALBEDOSCALING: the texture's .b at (N.V, sheen roughness), view only. */
+    realw sh = 1.0f - m.sheen_max * BRDF_Babylon(lut, g.NdotV, m.sheen_roughness, 2);
     scale_base(&diffuse, &specular, sh);
   }
 #endif
@@ -49,12 +51,17 @@ BRDF_FN rgbw brdf_profile(const material_lanes m, vec3w L, vec3w V, vec3w Lc, ve
     scale_below(&diffuse, &specular, &sheen, k);
     realw c = Fc * D_GGX_HalfAngle(gc.sin2, gc.cos2, m.clearcoat_alpha) * V_Kelemen(gc.VdotH);
     /* The coat's multiscatter factor takes the base's F0 (pbrBlockClearcoat), so it is coloured. */
-    realw cc_k = 1.0f / Ess_ThreeJs(dfg, m.clearcoat_roughness, gc.NdotV) - 1.0f;
+    realw cc_k = 1.0f / BRDF_Babylon(lut, gc.NdotV, m.clearcoat_roughness, 1) - 1.0f;
     coat.r = c * (1.0f + f0.r * cc_k);
     coat.g = c * (1.0f + f0.g * cc_k);
     coat.b = c * (1.0f + f0.b * cc_k);
   }
 #endif
+  /* pbrBlockFinalUnlitComponents: finalDiffuse = max(diffuseBase * surfaceAlbedo, 0), after the
+     sheen scaling, which turns negative where max3(c) .b exceeds 1. */
+  diffuse.r = max(diffuse.r, 0.0f);
+  diffuse.g = max(diffuse.g, 0.0f);
+  diffuse.b = max(diffuse.b, 0.0f);
 #if BRDFCL_LOBE == BRDFCL_LOBE_CLEARCOAT
   return coat;
 #elif BRDFCL_LOBE == BRDFCL_LOBE_DIFFUSE || BRDFCL_LOBE == BRDFCL_LOBE_SPECULAR || BRDFCL_LOBE == BRDFCL_LOBE_SHEEN

@@ -156,6 +156,20 @@ BRDF_FN realw E_SheenKhronos(__global const float* lut, realw mu, realw r) {
   return mix(mix(t00, t01, fx), mix(t10, t11, fx), fy);
 }
 
+/* Babylon's environment BRDF texture (docs/profiles.md "Tables"), channel ch of
+   texture(environmentBrdfSampler, vec2(N.V, r)) with BILINEAR and CLAMP: 3 floats per texel, texel
+   (i, j) centred at ((i + 0.5)/n, (j + 0.5)/n), row j = perceptual roughness. */
+BRDF_FN realw BRDF_Babylon(__global const float* lut, realw mu, realw r, int ch) {
+  const int n = BRDFCL_BABYLON_BRDF_SIZE;
+  realw x = clamp(mu * (float)n - 0.5f, 0.0f, (float)(n - 1));
+  realw y = clamp(r * (float)n - 0.5f, 0.0f, (float)(n - 1));
+  intw x0 = min(CONVERT_INTW(x), n - 2), y0 = min(CONVERT_INTW(y), n - 2);
+  realw fx = x - CONVERT_REALW(x0), fy = y - CONVERT_REALW(y0);
+  intw i = (y0 * n + x0) * 3 + ch;
+  realw t00 = GATHERW(lut, i), t01 = GATHERW(lut + 3, i), t10 = GATHERW(lut + 3 * n, i), t11 = GATHERW(lut + 3 * n + 3, i);
+  return mix(mix(t00, t01, fx), mix(t10, t11, fx), fy);
+}
+
 /* Single-scattering GGX albedo with F = 1: A + B of the table. */
 BRDF_FN realw Ess_ThreeJs(__global const float* dfg, realw roughness, realw mu) {
   realw A, B;

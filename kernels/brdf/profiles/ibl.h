@@ -182,7 +182,12 @@ static inline float3 profile_ibl(const ibl_env* e, const ibl_frame* f, brdfcl_ma
 /* PBR blocks: reflectance F0 A + B with the multiscatter energy factor, diffuse x (1 - reflectance)
    (brdfcl's reading, docs/profiles.md), sheen from the GGX chain times E with view-only scaling,
    the coat's radiance times 0.04 A + B over (1 - Fc) on everything below. Radiance is read at
-   sqrt(alpha_G) of each lobe. */
+   sqrt(alpha_G) of each lobe; (A, B) and E are Babylon's BRDF texture: A = .y - .x, B = .x, E = .b. */
+static inline float3 babylon_brdf(const ibl_env* e, float nv, float r) {
+  __global const float* lut = e->tables + e->e_size * e->e_size + 2 * BRDFCL_DFG_SIZE * BRDFCL_DFG_SIZE;
+  return (float3)(BRDF_Babylon(lut, nv, r, 0), BRDF_Babylon(lut, nv, r, 1), BRDF_Babylon(lut, nv, r, 2));
+}
+
 static inline float3 profile_ibl(const ibl_env* e, const ibl_frame* f, brdfcl_material_params q,
                                  const brdfcl_material* p, float* emission_weight) {
   float nv = max(dot(f->N, f->V), 1e-4f), r = q.roughness;
@@ -192,7 +197,8 @@ static inline float3 profile_ibl(const ibl_env* e, const ibl_frame* f, brdfcl_ma
     float3 bn = bent_normal_spec(f, q.anisotropy_strength, r);
     R = normalize(mix(reflect_v(f->V, bn), bn, r * r));
   }
-  float2 ab = ibl_dfg(e, nv, r);
+  float3 t = babylon_brdf(e, nv, r);
+  float2 ab = (float2)(t.y - t.x, t.x);
   float3 f0 = mix((float3)(p->ior_f0), base, q.metallic);
   float3 refl = f0 * ab.x + ab.y;
   float3 spec = ibl_radiance(e, R, sqrt(r * r + 0.0005f)) * refl * (1.0f + f0 * (1.0f / (ab.x + ab.y) - 1.0f));
@@ -200,7 +206,7 @@ static inline float3 profile_ibl(const ibl_env* e, const ibl_frame* f, brdfcl_ma
   float3 sheen = (float3)(0.0f);
   float sheen_max = brdfcl_max3(q.sheen_color);
   if (sheen_max > 0.0f) {
-    float Es = ibl_sheen_e(e, nv, q.sheen_roughness);
+    float Es = babylon_brdf(e, nv, q.sheen_roughness).z;
     spec *= 1.0f - sheen_max * Es;
     diffuse *= 1.0f - sheen_max * Es;
     sheen = (float3)(q.sheen_color[0], q.sheen_color[1], q.sheen_color[2]) * Es *
@@ -208,7 +214,8 @@ static inline float3 profile_ibl(const ibl_env* e, const ibl_frame* f, brdfcl_ma
   }
   float ncv = max(dot(f->Nc, f->V), 1e-4f);
   float Fc = q.clearcoat * F_Schlick90(0.04f, 1.0f, s5f(ncv));
-  float2 abc = ibl_dfg(e, ncv, q.clearcoat_roughness);
+  float3 tc = babylon_brdf(e, ncv, q.clearcoat_roughness);
+  float2 abc = (float2)(tc.y - tc.x, tc.x);
   float3 coat = q.clearcoat * (0.04f * abc.x + abc.y) * ibl_radiance(e, reflect_v(f->V, f->Nc), sqrt(p->clearcoat_alpha));
   *emission_weight = 1.0f - Fc;
   return (diffuse + spec + sheen) * (1.0f - Fc) + coat;
