@@ -56,7 +56,7 @@ TEST(BabylonEngine, CoatMultiscatterFactorTakesBaseF0PerChannel) {
   const Samples s = pairsOf({{0, 0, 1, 0, 0, 1}});
   const auto k = kernel(m, Lobe::Clearcoat, s);
   const double rc = m.clearcoatRoughness;
-  const double E = ref::threejsDfgEss(rc, 1.0 + 1e-7);
+  const double E = ref::babylonBrdf(1.0 + 1e-7, rc)[1];  // Babylon's own BRDF texture, .y
   const double aG = rc * rc + 0.0005;
   const double white = 0.04 / (kPi * aG * aG) * 0.25;
   for (int c = 0; c < 3; ++c) {
