@@ -188,6 +188,9 @@ def _show_warning(message: Any, category: Any, filename: str, lineno: int, file:
 
 def main(argv: Optional[Sequence[str]] = None) -> int:
     warnings.showwarning = _show_warning
+    # A command line: the library's messages name options as --profile, as `brdfcl`'s do.
+    from . import _core
+    _core.set_cli_option_style()
     try:
         a = _parser().parse_args(argv)
         ext = os.path.splitext(a.out)[1].lower()

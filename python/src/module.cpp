@@ -33,6 +33,8 @@
 #include "brdfcl/render_job.hpp"
 #include "brdfcl/runtime.hpp"
 #include "brdfcl/scene.hpp"
+#include "host/src/io/option_style.hpp"
+#include "host/src/model/pack.hpp"
 
 namespace nb = nanobind;
 using namespace nb::literals;
@@ -82,6 +84,7 @@ brdfcl::EvalOptions evalOptions(const std::string& lobe, const std::string& visi
   o.sheenDistribution = brdfcl::parseSheenDistribution(distribution);
   o.sheenScaling = brdfcl::parseSheenScaling(scaling);
   o.lobe = brdfcl::parseLobe(lobe);
+  brdfcl::checkProfileOptions(o);
   return o;
 }
 
@@ -287,6 +290,8 @@ nb::ndarray<nb::numpy, float> imageToNumpy(brdfcl::Image&& img) {
 
 NB_MODULE(_core, m) {
   m.doc() = "brdfcl's C++ host library (brdfcl_core); use the brdfcl package, not this module.";
+  // Every message names options as this process's callers write them: lobe=, not --lobe.
+  brdfcl::setOptionStyle(brdfcl::OptionStyle::Python);
   // brdfcl.Error is the base of one class per brdfcl::ErrorKind, each also deriving the built-in
   // class a Python caller expects of that kind, so `except brdfcl.Error` and `except ValueError`
   // (or OSError, RuntimeError, MemoryError) both catch it.
@@ -328,6 +333,9 @@ NB_MODULE(_core, m) {
       PyErr_SetString(kindClass[3] /* Memory */, brdfcl::outOfMemoryMessage().c_str());
     }
   });
+
+  // `python -m brdfcl` is a command line: its messages name its --options, as the CLI's do.
+  m.def("set_cli_option_style", [] { brdfcl::setOptionStyle(brdfcl::OptionStyle::Cli); });
 
   m.def("devices", [] {
     std::vector<nb::dict> out;
@@ -424,8 +432,7 @@ NB_MODULE(_core, m) {
            [](Device& d, brdfcl::RenderJob job, const std::string& ibl, int iblSamples, bool iblSamplesGiven) {
              job.shade.ibl = brdfcl::parseIblMode(ibl);
              brdfcl::checkIblSamples(iblSamples);
-             if (job.shade.ibl != brdfcl::IblMode::Exact && iblSamplesGiven)
-               throw Error("ibl_samples applies to ibl='exact'; add ibl='exact'");
+             brdfcl::checkIblSamplesApply(job.shade.ibl, iblSamplesGiven);
              job.shade.iblSamples = iblSamples;
              std::vector<std::string> warnings;
              job.warn = [&warnings](const std::string& w) { warnings.push_back(w); };
@@ -446,9 +453,6 @@ NB_MODULE(_core, m) {
              so.ibl = brdfcl::parseIblMode(ibl);
              brdfcl::checkIblSamples(iblSamples);
              so.iblSamples = iblSamples;
-             if (so.ibl == brdfcl::IblMode::Exact && o.profile != brdfcl::Profile::Spec)
-               throw Error("ibl='exact' integrates the spec's BRDF only; profile '" + profile +
-                           "' reproduces its engine's own image-based light, so use ibl='split-sum' with it");
              brdfcl::Image img;
              {
                nb::gil_scoped_release release;
