@@ -67,7 +67,7 @@ void addDiffCommand(CLI::App& app) {
     const ImageDiff diff = diffExrFiles(args->a, args->b, o);
     const ImageDiffStats& s = diff.stats;
     const double range = cmd->count("--range") ? args->range : defaultDiffRange(s);
-    if (!args->out.empty()) writeImageDiffPng(args->out, diff, args->a, args->b, range);
+    if (!args->out.empty()) writeImageDiffPng(args->out, diff, range);
     if (args->json) {
       std::fputs(imageDiffJson(s, args->a, args->b, range, args->out).c_str(), stdout);
     } else {

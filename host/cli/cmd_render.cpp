@@ -70,7 +70,7 @@ void writeOutputs(const Args& a, CLI::App* cmd, bool diff, const Image& img, con
   if (!a.exrOut.empty()) writeImages(img, a.exrOut, "", a.exposure);
   const std::string nameA = "--profile " + a.profile.profile, nameB = "--profile " + a.profile.against;
   const ImageDiff d = diffImages(img.rgb, other.rgb, img.width, img.height);
-  writeImageDiffPng(a.out, d, nameA, nameB, defaultDiffRange(d.stats));
+  writeImageDiffPng(a.out, d, defaultDiffRange(d.stats));
   std::fputs(formatImageDiff(d.stats, nameA, nameB).c_str(), detail::isStreamTarget(a.out) ? stderr : stdout);
   a.profile.printEngines(cmd);
 }

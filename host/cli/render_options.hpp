@@ -70,7 +70,7 @@ struct IblArgs {
     ShadeOptions o;
     o.ibl = parseIblMode(mode);
     checkIblSamples(samples);
-    if (o.ibl != IblMode::Exact && cmd->count("--ibl-samples")) throw Error("--ibl-samples applies to --ibl exact; add --ibl exact");
+    checkIblSamplesApply(o.ibl, cmd->count("--ibl-samples") > 0);
     o.iblSamples = samples;
     o.progress = o.ibl == IblMode::Exact ? progressLine("brdfcl: exact IBL", "samples per pixel")
                                          : progressLine(what, "band");

@@ -8,7 +8,12 @@ L points from the surface towards the light, V towards the viewer; f is the BRDF
 power-of-two rescaling of vectors beyond float's range), so the results equal the CLI's bit for bit. A direction at or below the
 horizon gives f = 0.
 
-Errors raise a subclass of brdfcl.Error carrying the CLI's message, by kind: InputError (a
+The model options (lobe, profile, sheen_visibility, sheen_distribution, sheen_scaling) are one
+brdfcl.Options object, checked once when made; every function and Evaluator method takes it as
+options=, or the same names as keywords, which override it.
+
+Errors raise a subclass of brdfcl.Error carrying the CLI's message (options named as Python
+keywords: lobe=, not --lobe), by kind: InputError (a
 ValueError), EnvironmentError (an OSError: no OpenCL platform or device, cache folder),
 DeviceError (a RuntimeError), OutOfMemoryError (a MemoryError), InternalError (a RuntimeError). The GIL is released while
 the device works; calls from several threads are safe.
@@ -36,7 +41,8 @@ if TYPE_CHECKING:
     from . import plot as plot
 
 __all__ = [
-    "Error", "InputError", "DeviceError", "OutOfMemoryError", "InternalError", "BrdfclWarning", "Evaluator", "devices", "evaluate", "evaluate_grid", "albedo", "lut",
+    "Error", "InputError", "DeviceError", "OutOfMemoryError", "InternalError", "BrdfclWarning", "Options", "Evaluator",
+    "devices", "evaluate", "evaluate_grid", "albedo", "lut",
     "render", "shade", "read_gbuffer", "write_gbuffer", "read_exr", "LOBES", "PROFILES", "LUT_KINDS",
 ]
 __version__ = "0.1.0"
@@ -47,6 +53,67 @@ LUT_KINDS = ("sheen-e", "ggx-dfg", "charlie-dfg")
 
 PathLike = Union[str, "os.PathLike[str]"]
 MaterialsLike = Union[PathLike, Mapping[str, Any], Sequence[Mapping[str, Any]], "_core.Materials"]
+
+
+class Options:
+    """The model options, checked when made (an unknown value, or a sheen variant under an engine
+    profile, raises InputError naming the keyword):
+
+    lobe: all|diffuse|specular|sheen|clearcoat. profile: spec|khronos|threejs|filament|babylon|
+    materialx (docs/profiles.md). sheen_visibility, sheen_distribution: charlie|ashikhmin;
+    sheen_scaling: min|view|none (spec profile only).
+
+    Immutable and hashable; replace(**changes) makes a changed copy. Pass it as options= to any
+    function or Evaluator method, or to Evaluator(options=) as that evaluator's default.
+    """
+
+    __slots__ = ("lobe", "profile", "sheen_visibility", "sheen_distribution", "sheen_scaling", "_core")
+    _NAMES = ("lobe", "profile", "sheen_visibility", "sheen_distribution", "sheen_scaling")
+
+    def __init__(self, *, lobe: str = "all", profile: str = "spec", sheen_visibility: str = "charlie",
+                 sheen_distribution: str = "charlie", sheen_scaling: str = "min"):
+        values = (lobe, profile, sheen_visibility, sheen_distribution, sheen_scaling)
+        for name, value in zip(self._NAMES, values):
+            if not isinstance(value, str):
+                raise InputError(f"{name}= must be a str, got {type(value).__name__}")
+            object.__setattr__(self, name, value)
+        object.__setattr__(self, "_core", _core.eval_options(lobe, sheen_visibility, sheen_distribution, sheen_scaling,
+                                                             profile))
+
+    def replace(self, **changes: str) -> "Options":
+        """A copy with the given options changed."""
+        unknown = sorted(set(changes) - set(self._NAMES))
+        if unknown:
+            raise TypeError(f"unknown option {unknown[0]!r}; the options are " + ", ".join(self._NAMES))
+        return Options(**{**{n: getattr(self, n) for n in self._NAMES}, **changes})
+
+    def __setattr__(self, name: str, value: Any) -> None:
+        raise AttributeError("brdfcl.Options is immutable; use replace()")
+
+    def _key(self) -> Tuple[str, ...]:
+        return tuple(getattr(self, n) for n in self._NAMES)
+
+    def __eq__(self, other: object) -> bool:
+        return isinstance(other, Options) and self._key() == other._key()
+
+    def __hash__(self) -> int:
+        return hash(self._key())
+
+    def __repr__(self) -> str:
+        return "brdfcl.Options(" + ", ".join(f"{n}={getattr(self, n)!r}" for n in self._NAMES) + ")"
+
+
+_DEFAULT_OPTIONS = Options()
+
+
+def _options(options: Optional[Options], default: Options, **keywords: Optional[str]) -> Options:
+    """`options` (or `default`) with the keywords given (not None) applied."""
+    if options is None:
+        options = default
+    elif not isinstance(options, Options):
+        raise InputError(f"options= must be a brdfcl.Options, got {type(options).__name__}")
+    given = {k: v for k, v in keywords.items() if v is not None}
+    return options.replace(**given) if given else options
 
 
 class BrdfclWarning(UserWarning):
@@ -158,8 +225,10 @@ class Evaluator:
     Conventions: N = +Z, L towards the light, V towards the viewer, f without the cosine.
     """
 
-    def __init__(self, device: Union[None, int, str] = None):
+    def __init__(self, device: Union[None, int, str] = None, *, options: Optional[Options] = None):
         self._device = _core.Device("" if device is None else str(device))
+        self.options = _options(options, _DEFAULT_OPTIONS)
+        """The options of every call that gives no options= of its own."""
 
     @property
     def device(self) -> Dict[str, Any]:
@@ -170,11 +239,12 @@ class Evaluator:
         return f"brdfcl.Evaluator({self.device['name']!r})"
 
     def evaluate(self, materials: MaterialsLike, L: Any, V: Any, material_index: Any = None, *,
-                 lobe: str = "all", sheen_visibility: str = "charlie", sheen_distribution: str = "charlie",
-                 sheen_scaling: str = "min", profile: str = "spec", strict: bool = False,
-                 out: Optional[np.ndarray] = None) -> np.ndarray:
+                 options: Optional[Options] = None, lobe: Optional[str] = None, sheen_visibility: Optional[str] = None,
+                 sheen_distribution: Optional[str] = None, sheen_scaling: Optional[str] = None,
+                 profile: Optional[str] = None, strict: bool = False, out: Optional[np.ndarray] = None) -> np.ndarray:
         """f(L, V) per sample: float32 (N, 3) rgb in 1/sr, no cosine. See brdfcl.evaluate."""
-        opts = _core.eval_options(lobe, sheen_visibility, sheen_distribution, sheen_scaling, profile)
+        opts = _options(options, self.options, lobe=lobe, sheen_visibility=sheen_visibility,
+                        sheen_distribution=sheen_distribution, sheen_scaling=sheen_scaling, profile=profile)._core
         m = _materials(materials, strict)
         Ld, Vd = _directions(L, "L"), _directions(V, "V")
         if Ld.shape[0] != Vd.shape[0]:
@@ -186,12 +256,14 @@ class Evaluator:
         self._device.evaluate(m, Ld, Vd, idx, out, opts)
         return out
 
-    def evaluate_grid(self, materials: MaterialsLike, L: Any, V: Any, *, lobe: str = "all",
-                      sheen_visibility: str = "charlie", sheen_distribution: str = "charlie",
-                      sheen_scaling: str = "min", profile: str = "spec", strict: bool = False,
+    def evaluate_grid(self, materials: MaterialsLike, L: Any, V: Any, *, options: Optional[Options] = None,
+                      lobe: Optional[str] = None, sheen_visibility: Optional[str] = None,
+                      sheen_distribution: Optional[str] = None, sheen_scaling: Optional[str] = None,
+                      profile: Optional[str] = None, strict: bool = False,
                       out: Optional[np.ndarray] = None) -> np.ndarray:
         """Every material x every direction pair: float32 (M, N, 3). See brdfcl.evaluate_grid."""
-        opts = _core.eval_options(lobe, sheen_visibility, sheen_distribution, sheen_scaling, profile)
+        opts = _options(options, self.options, lobe=lobe, sheen_visibility=sheen_visibility,
+                        sheen_distribution=sheen_distribution, sheen_scaling=sheen_scaling, profile=profile)._core
         m = _materials(materials, strict)
         Ld, Vd = _directions(L, "L"), _directions(V, "V")
         if Ld.shape[0] != Vd.shape[0]:
@@ -200,11 +272,14 @@ class Evaluator:
         self._device.evaluate_grid(m, Ld, Vd, out, opts)
         return out
 
-    def albedo(self, material: MaterialsLike, cos_theta_v: Any, *, sheen_visibility: str = "charlie",
-               sheen_distribution: str = "charlie", sheen_scaling: str = "min", profile: str = "spec",
+    def albedo(self, material: MaterialsLike, cos_theta_v: Any, *, options: Optional[Options] = None,
+               sheen_visibility: Optional[str] = None, sheen_distribution: Optional[str] = None,
+               sheen_scaling: Optional[str] = None, profile: Optional[str] = None,
                strict: bool = False) -> Dict[str, np.ndarray]:
         """Directional albedo per lobe. See brdfcl.albedo."""
-        opts = _core.eval_options("all", sheen_visibility, sheen_distribution, sheen_scaling, profile)
+        # Every lobe is integrated, so the options' lobe plays no part.
+        opts = _options(options, self.options, lobe="all", sheen_visibility=sheen_visibility,
+                        sheen_distribution=sheen_distribution, sheen_scaling=sheen_scaling, profile=profile)._core
         single = isinstance(material, Mapping) and "materials" not in material
         m = _materials(material, strict)
         if len(m) == 0:
@@ -241,7 +316,8 @@ class Evaluator:
                size: Optional[Tuple[int, int]] = None, camera: Union[None, int, str] = None,
                spp: Optional[int] = None, environment: Optional[PathLike] = None,
                env_intensity: Optional[float] = None, env_rotation: Optional[float] = None,
-               lights: PathLike = "gltf", profile: str = "spec", ibl: str = "split-sum",
+               lights: PathLike = "gltf", options: Optional[Options] = None, profile: Optional[str] = None,
+               ibl: str = "split-sum",
                ibl_samples: Optional[int] = None, gltf_scene: Optional[int] = None,
                variant: Optional[str] = None, strict: bool = False,
                allow_outside_uris: bool = False) -> np.ndarray:
@@ -280,14 +356,14 @@ class Evaluator:
             job.variant = str(variant)
         job.strict = bool(strict)
         job.allow_outside_uris = bool(allow_outside_uris)
-        job.set_profile(profile)
+        job.set_profile(_options(options, self.options, profile=profile).profile)
         image, warns = self._device.render(job, ibl, 1024 if ibl_samples is None else _int(ibl_samples, "ibl_samples"),
                                            ibl_samples is not None)
         _warn(warns)
         return image
 
     def shade(self, gbuffer: Union[PathLike, Mapping[str, Any]], scene: Union[PathLike, Mapping[str, Any]], *,
-              profile: str = "spec", ibl: str = "split-sum", ibl_samples: int = 1024,
+              options: Optional[Options] = None, profile: Optional[str] = None, ibl: str = "split-sum", ibl_samples: int = 1024,
               check: bool = True, allow_outside_uris: bool = False) -> np.ndarray:
         """Deferred shading of a G-buffer: float32 (H, W, 3) linear radiance. See brdfcl.shade."""
         g = _gbuffer(gbuffer, check)
@@ -305,6 +381,7 @@ class Evaluator:
         camera_warning = _core.shade_camera_warning(scene_name, s, gbuffer_name, g)
         if camera_warning:
             _warn([camera_warning])
+        profile = _options(options, self.options, profile=profile).profile
         return self._device.shade(g, s, profile, ibl, _int(ibl_samples, "ibl_samples"))
 
 
@@ -354,9 +431,10 @@ def devices() -> List[Dict[str, Any]]:
     return _core.devices()
 
 
-def evaluate(materials: MaterialsLike, L: Any, V: Any, material_index: Any = None, *, lobe: str = "all",
-             sheen_visibility: str = "charlie", sheen_distribution: str = "charlie", sheen_scaling: str = "min",
-             profile: str = "spec", strict: bool = False,
+def evaluate(materials: MaterialsLike, L: Any, V: Any, material_index: Any = None, *,
+             options: Optional[Options] = None, lobe: Optional[str] = None,
+             sheen_visibility: Optional[str] = None, sheen_distribution: Optional[str] = None,
+             sheen_scaling: Optional[str] = None, profile: Optional[str] = None, strict: bool = False,
              device: Union[None, int, str, Evaluator] = None, out: Optional[np.ndarray] = None) -> np.ndarray:
     """f(L, V) of glTF materials per sample: float32 array (N, 3), rgb in 1/sr, without the cosine.
 
@@ -371,23 +449,26 @@ def evaluate(materials: MaterialsLike, L: Any, V: Any, material_index: Any = Non
       (pbrMetallicRoughness, KHR_materials_sheen, _clearcoat, _anisotropy, _ior). Unknown keys
       warn (BrdfclWarning); strict=True makes them errors.
     material_index: int array (N,) of indices into materials; required with more than one.
-    lobe: all|diffuse|specular|sheen|clearcoat. profile: spec|khronos|threejs|filament|babylon|
-      materialx (docs/profiles.md). sheen_visibility, sheen_distribution: charlie|ashikhmin;
-      sheen_scaling: min|view|none (spec profile only).
+    options: a brdfcl.Options (default: the Evaluator's, else brdfcl.Options()); lobe, profile,
+      sheen_visibility, sheen_distribution, sheen_scaling: the same options as keywords, which
+      override it (lobe: all|diffuse|specular|sheen|clearcoat; profile: spec|khronos|threejs|
+      filament|babylon|materialx, docs/profiles.md; the sheen variants: spec profile only).
     device: None (the default device, $BRDFCL_DEVICE then 0), an index, a name substring or an
       Evaluator. Raises brdfcl.Error on a bad material, direction or option, naming it.
     out: an existing C-contiguous float32 array of shape (N, 3) to write f into and return, as
       numpy's out=: a loop that reuses it skips the page faults of a fresh result array.
     """
-    return _evaluator(device).evaluate(materials, L, V, material_index, lobe=lobe, sheen_visibility=sheen_visibility,
+    return _evaluator(device).evaluate(materials, L, V, material_index, options=options, lobe=lobe,
+                                       sheen_visibility=sheen_visibility,
                                        sheen_distribution=sheen_distribution, sheen_scaling=sheen_scaling,
                                        profile=profile, strict=strict, out=out)
 
 
-def evaluate_grid(materials: MaterialsLike, L: Any, V: Any, *, lobe: str = "all", sheen_visibility: str = "charlie",
-                  sheen_distribution: str = "charlie", sheen_scaling: str = "min", profile: str = "spec",
-                  strict: bool = False, device: Union[None, int, str, Evaluator] = None,
-                  out: Optional[np.ndarray] = None) -> np.ndarray:
+def evaluate_grid(materials: MaterialsLike, L: Any, V: Any, *,
+                  options: Optional[Options] = None, lobe: Optional[str] = None,
+                  sheen_visibility: Optional[str] = None, sheen_distribution: Optional[str] = None,
+                  sheen_scaling: Optional[str] = None, profile: Optional[str] = None, strict: bool = False,
+                  device: Union[None, int, str, Evaluator] = None, out: Optional[np.ndarray] = None) -> np.ndarray:
     """f(L, V) of every material at every direction pair: float32 array (M, N, 3), rgb in 1/sr,
     without the cosine; out[m, i] is material m at pair i (`brdfcl eval --grid`, bit for bit).
 
@@ -395,14 +476,15 @@ def evaluate_grid(materials: MaterialsLike, L: Any, V: Any, *, lobe: str = "all"
     viewer, f without the cosine); there is no material_index. out: an existing C-contiguous
     float32 (M, N, 3) array to fill and return.
     """
-    return _evaluator(device).evaluate_grid(materials, L, V, lobe=lobe, sheen_visibility=sheen_visibility,
+    return _evaluator(device).evaluate_grid(materials, L, V, options=options, lobe=lobe, sheen_visibility=sheen_visibility,
                                             sheen_distribution=sheen_distribution, sheen_scaling=sheen_scaling,
                                             profile=profile, strict=strict, out=out)
 
 
-def albedo(material: MaterialsLike, cos_theta_v: Any, *, sheen_visibility: str = "charlie",
-           sheen_distribution: str = "charlie", sheen_scaling: str = "min", profile: str = "spec",
-           strict: bool = False, device: Union[None, int, str, Evaluator] = None) -> Dict[str, np.ndarray]:
+def albedo(material: MaterialsLike, cos_theta_v: Any, *, options: Optional[Options] = None,
+           sheen_visibility: Optional[str] = None, sheen_distribution: Optional[str] = None,
+           sheen_scaling: Optional[str] = None, profile: Optional[str] = None, strict: bool = False,
+           device: Union[None, int, str, Evaluator] = None) -> Dict[str, np.ndarray]:
     """Directional albedo per lobe, as `brdfcl albedo`: the integral over the hemisphere of L of
     f(L, V) N.L, by deterministic quadrature on the device.
 
@@ -410,9 +492,10 @@ def albedo(material: MaterialsLike, cos_theta_v: Any, *, sheen_visibility: str =
     [0, 1]), L towards the light, f without the cosine (the integral applies N.L).
     Returns {"diffuse", "specular", "sheen", "clearcoat", "all"} -> float32 RGB albedo of shape
     (K, 3) for one material dict (K = len(cos_theta_v); (3,) for a scalar), (M, K, 3) for a list
-    or a file of M materials. Options as brdfcl.evaluate.
+    or a file of M materials. Options as brdfcl.evaluate; every lobe is integrated, whatever
+    the options' lobe.
     """
-    return _evaluator(device).albedo(material, cos_theta_v, sheen_visibility=sheen_visibility,
+    return _evaluator(device).albedo(material, cos_theta_v, options=options, sheen_visibility=sheen_visibility,
                                      sheen_distribution=sheen_distribution, sheen_scaling=sheen_scaling,
                                      profile=profile, strict=strict)
 
@@ -434,7 +517,7 @@ def lut(kind: str, size: int = 128, *, sheen_visibility: Optional[str] = None,
 def render(gltf: Optional[PathLike] = None, scene: Optional[str] = None, *, size: Optional[Tuple[int, int]] = None,
            camera: Union[None, int, str] = None, spp: Optional[int] = None, environment: Optional[PathLike] = None,
            env_intensity: Optional[float] = None, env_rotation: Optional[float] = None, lights: PathLike = "gltf",
-           profile: str = "spec", ibl: str = "split-sum", ibl_samples: Optional[int] = None,
+           options: Optional[Options] = None, profile: Optional[str] = None, ibl: str = "split-sum", ibl_samples: Optional[int] = None,
            gltf_scene: Optional[int] = None, variant: Optional[str] = None, strict: bool = False,
            allow_outside_uris: bool = False, device: Union[None, int, str, Evaluator] = None) -> np.ndarray:
     """Renders a glTF asset (gltf=PATH) or the built-in scene (scene="spheres", the default):
@@ -443,7 +526,8 @@ def render(gltf: Optional[PathLike] = None, scene: Optional[str] = None, *, size
     size: (width, height) (default 768x768 for the spheres; glTF: 1280x720 or the camera's aspect
     at 720 rows). camera: glTF camera index or "auto". spp: glTF sub-pixel samples (default 4).
     environment: builtin|sky|studio|uniform|FILE.hdr|FILE.exr, env_intensity, env_rotation
-    (radians about +Y). lights: gltf|none|SCENE.json. profile: as brdfcl.evaluate. ibl: split-sum
+    (radians about +Y). lights: gltf|none|SCENE.json. options, profile: as brdfcl.evaluate (a
+    render uses the profile; the options' lobe and sheen variants play no part). ibl: split-sum
     or exact (Monte Carlo, ibl_samples per pixel). gltf_scene, variant, strict: as the CLI's
     --gltf-scene, --variant, --strict. allow_outside_uris: as --allow-outside-uris, lets the asset's
     URIs and a lights scene's environment path name files outside their folders (docs/gltf.md,
@@ -453,12 +537,13 @@ def render(gltf: Optional[PathLike] = None, scene: Optional[str] = None, *, size
     """
     return _evaluator(device).render(gltf, scene, size=size, camera=camera, spp=spp, environment=environment,
                                      env_intensity=env_intensity, env_rotation=env_rotation, lights=lights,
-                                     profile=profile, ibl=ibl, ibl_samples=ibl_samples, gltf_scene=gltf_scene,
+                                     options=options, profile=profile, ibl=ibl, ibl_samples=ibl_samples, gltf_scene=gltf_scene,
                                      variant=variant, strict=strict, allow_outside_uris=allow_outside_uris)
 
 
 def shade(gbuffer: Union[PathLike, Mapping[str, Any]], scene: Union[PathLike, Mapping[str, Any]], *,
-          profile: str = "spec", ibl: str = "split-sum", ibl_samples: int = 1024, check: bool = True,
+          options: Optional[Options] = None, profile: Optional[str] = None, ibl: str = "split-sum",
+          ibl_samples: int = 1024, check: bool = True,
           allow_outside_uris: bool = False, device: Union[None, int, str, Evaluator] = None) -> np.ndarray:
     """Deferred shading of a G-buffer under a scene's lights and environment, as `brdfcl shade`:
     float32 (H, W, 3) linear radiance.
@@ -472,10 +557,11 @@ def shade(gbuffer: Union[PathLike, Mapping[str, Any]], scene: Union[PathLike, Ma
     the caller's own and taken as it is (relative to the working directory).
     Warns (BrdfclWarning) as the CLI does when the scene's camera differs from the G-buffer's, or
     neither has one and the G-buffer no V.
+    options, profile: as brdfcl.render.
     Conventions: world-space N per pixel, L towards the light, V towards the viewer, f without
     the cosine (the shader applies N.L).
     """
-    return _evaluator(device).shade(gbuffer, scene, profile=profile, ibl=ibl, ibl_samples=ibl_samples, check=check,
+    return _evaluator(device).shade(gbuffer, scene, options=options, profile=profile, ibl=ibl, ibl_samples=ibl_samples, check=check,
                                     allow_outside_uris=allow_outside_uris)
 
 

@@ -99,11 +99,12 @@ def _parser() -> argparse.ArgumentParser:
     p.add_argument("--sheen-visibility", help="charlie|ashikhmin (default charlie)")
     p.add_argument("--sheen-distribution", help="charlie|ashikhmin (default charlie)")
 
-    p = kinds.add_parser("compare", help="log2 ratio of two profiles, in-plane heat map")
+    p = kinds.add_parser("compare", help="log2 ratio of two profiles, heat map (`brdfcl compare --out`)")
     _common(p, True, "6x5")
     _model(p, profile=False)
     p.add_argument("--profile", default="khronos", help="profile A (default khronos)")
     p.add_argument("--against", default="spec", help="profile B (default spec)")
+    p.add_argument("--plane", default="inplane", help="inplane|halfdiff (default inplane)")
     p.add_argument("--lobe", default="all", help="all|diffuse|specular|sheen|clearcoat")
     p.add_argument("--resolution", type=int, default=90, help="cells per side (default 90)")
 
@@ -118,6 +119,16 @@ def _parser() -> argparse.ArgumentParser:
     p.add_argument("--spp", type=int, help="glTF sub-pixel samples (default 4)")
     p.add_argument("--camera", help="glTF camera index or auto")
     p.add_argument("--environment", help="builtin|sky|studio|uniform|FILE.hdr|FILE.exr")
+
+    p = kinds.add_parser("diff", help="relative luminance difference of two EXR renders (`brdfcl diff`)")
+    p.add_argument("a", metavar="A.exr", help="first image")
+    p.add_argument("b", metavar="B.exr", help="second image, the reference")
+    p.add_argument("--out", required=True, metavar="FILE", help="the figure: .png, .svg or .pdf")
+    p.add_argument("--figsize", default="", metavar="WxH", help="figure size in inches (default: the images' aspect)")
+    p.add_argument("--dpi", type=float, default=100, help="pixels per inch (default 100): PNG size = figsize x dpi")
+    p.add_argument("--threshold", type=float, default=0.01, help="as brdfcl diff --threshold (default 0.01)")
+    p.add_argument("--floor", type=float, help="as brdfcl diff --floor (default 1e-3 x mean luminance of B)")
+    p.add_argument("--range", type=float, help="colour range +-R (default: p99 of |d|)")
     return top
 
 
@@ -125,6 +136,9 @@ def _plot(kind: str, a: argparse.Namespace) -> Any:
     from . import plot  # matplotlib is imported here, after the backend is chosen
 
     figsize = _pair(a.figsize, "--figsize", float) if a.figsize else None
+    if kind == "diff":
+        extra = {} if figsize is None else {"figsize": figsize}
+        return plot.diff(a.a, a.b, threshold=a.threshold, floor=a.floor, range=a.range, dpi=a.dpi, **extra)
     common: Dict[str, Any] = {"dpi": a.dpi, "device": a.device}
     if figsize is not None:
         common["figsize"] = figsize
@@ -155,7 +169,7 @@ def _plot(kind: str, a: argparse.Namespace) -> Any:
         return plot.albedo(a.materials, a.material, resolution=a.resolution, channel=a.channel, profile=a.profile,
                            **model, **common)
     if kind == "compare":
-        return plot.compare(a.materials, a.material, profile=a.profile, against=a.against, lobe=a.lobe,
+        return plot.compare(a.materials, a.material, profile=a.profile, against=a.against, plane=a.plane, lobe=a.lobe,
                             resolution=a.resolution, **model, **common)
     raise AssertionError(kind)
 
@@ -188,6 +202,9 @@ def _show_warning(message: Any, category: Any, filename: str, lineno: int, file:
 
 def main(argv: Optional[Sequence[str]] = None) -> int:
     warnings.showwarning = _show_warning
+    # A command line: the library's messages name options as --profile, as `brdfcl`'s do.
+    from . import _core
+    _core.set_cli_option_style()
     try:
         a = _parser().parse_args(argv)
         ext = os.path.splitext(a.out)[1].lower()

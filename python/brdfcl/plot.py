@@ -1,6 +1,7 @@
 """brdfcl.plot: matplotlib figures of brdfcl's results (lobe, halfdiff, albedo, sheen_e, compare,
-image). Each function returns a Plot: the figure and the numpy arrays it drew, which are exactly
-what brdfcl.evaluate / albedo / lut / render returned for them. `python -m brdfcl plot` runs them.
+image, diff): the labelled figures of everything the CLI writes as data or text-free pictures.
+Each function returns a Plot: the figure and the numpy arrays it drew, which are exactly what
+brdfcl.evaluate / albedo / lut / render returned for them. `python -m brdfcl plot` runs them.
 
 Conventions are brdfcl's: N = +Z, T = +X, B = +Y; L towards the light, V towards the viewer; f in
 1/sr without the cosine. "Luminance" is Rec. 709's Y = 0.2126 R + 0.7152 G + 0.0722 B.
@@ -26,9 +27,10 @@ except ImportError as e:  # the rest of brdfcl works without it
 from . import _core, _materials, albedo as _albedo, evaluate as _evaluate, lut as _lut, render as _render
 from . import Error, Evaluator, InputError, LOBES, MaterialsLike
 
-__all__ = ["Plot", "lobe", "halfdiff", "halfdiff_directions", "albedo", "sheen_e", "compare", "image", "tone_map", "KINDS"]
+__all__ = ["Plot", "lobe", "halfdiff", "halfdiff_directions", "albedo", "sheen_e", "compare", "image", "diff",
+           "tone_map", "KINDS"]
 
-KINDS = ("lobe", "halfdiff", "albedo", "sheen-e", "compare", "image")
+KINDS = ("lobe", "halfdiff", "albedo", "sheen-e", "compare", "image", "diff")
 CHANNELS = ("luminance", "r", "g", "b")
 Device = Union[None, int, str, Evaluator]
 _REC709 = np.array([0.2126, 0.7152, 0.0722])
@@ -84,8 +86,13 @@ def _select(materials: MaterialsLike, material: int, strict: bool) -> Tuple["_co
     if not 0 <= material < count:
         raise InputError(f"material {material} is out of range: there {'is' if count == 1 else 'are'} {count} "
                     f"material{'' if count == 1 else 's'}; use 0 to {count - 1}")
-    name = m.names[int(material)] or "unnamed"
+    name = _plain(m.names[int(material)] or "unnamed")
     return _core.select_material(m, int(material)), f"[{int(material)}] {name}"
+
+
+def _plain(text: str) -> str:
+    """A name from a file, drawn as it is: matplotlib would read "$...$" in it as mathematics."""
+    return text.replace("$", r"\$")
 
 
 def _channel(f: np.ndarray, channel: str) -> np.ndarray:
@@ -411,28 +418,35 @@ def sheen_e(*, size: int = 64, sheen_visibility: Optional[str] = None, sheen_dis
 # ---- compare: two profiles as a ratio heat map ----
 
 def compare(materials: MaterialsLike, material: int = 0, *, profile: str = "khronos", against: str = "spec",
-            lobe: str = "all", resolution: int = 90, sheen_visibility: str = "charlie",
+            plane: str = "inplane", lobe: str = "all", resolution: int = 90, sheen_visibility: str = "charlie",
             sheen_distribution: str = "charlie", sheen_scaling: str = "min", strict: bool = False,
             figsize: Tuple[float, float] = (6, 5), dpi: float = 100, ax: Optional[Axes] = None,
             device: Device = None) -> Plot:
-    """log2 of f under `profile` over f under `against` (luminance), in the incidence plane over
-    (θ_L, θ_V) cell centres in [0, 90)°: V = (sin θ_V, 0, cos θ_V), L = (-sin θ_L, 0, cos θ_L)
-    (the mirror azimuth), as `brdfcl compare`'s in-plane map. Both luminances are floored at
+    """log2 of f under `profile` over f under `against` (luminance), as `brdfcl compare`'s heat
+    maps: plane="inplane", the incidence plane over (θ_L, θ_V) cell centres in [0, 90)°:
+    V = (sin θ_V, 0, cos θ_V), L = (-sin θ_L, 0, cos θ_L) (the mirror azimuth); plane="halfdiff",
+    (θ_h, θ_d) cell centres at φ_h = 0, φ_d = 90° (halfdiff_directions). Both luminances are floored at
     1e-3 ρ₀/π (ρ₀ the largest channel of the lobe-all albedo at normal view under either profile)
     so that 0/0 never occurs; a diverging map centred on 0 (equal) over ±R, R the first of 0.25,
     0.5, 1, 2, 4, 8 that holds the largest |log2| (beyond 8, the end colours); cells where either
     f is not finite are magenta.
 
-    arrays: theta_l_deg (n,), theta_v_deg (n,), L, V float32 (n, n, 3) ([θ_V index, θ_L
-    index]), f_a, f_b float32 (n, n, 3) (brdfcl.evaluate under profile and against), floor,
-    log2_ratio (n, n).
+    arrays: theta_l_deg, theta_v_deg (n,) (inplane) or theta_h_deg, theta_d_deg (n,)
+    (halfdiff), L, V float32 (n, n, 3) ([θ_V or θ_d index, θ_L or θ_h index]), f_a, f_b float32
+    (n, n, 3) (brdfcl.evaluate under profile and against), floor, log2_ratio (n, n).
     """
+    if plane not in ("inplane", "halfdiff"):
+        raise InputError(f"plane must be inplane or halfdiff, got {plane!r}")
     m, name = _select(materials, material, strict)
     n = _resolution(resolution, 2, 1024)
     theta = _cell_centres_deg(n)
-    tl, tv = np.meshgrid(np.radians(theta), np.radians(theta))
-    L = np.stack([-np.sin(tl), np.zeros_like(tl), np.cos(tl)], axis=-1).astype(np.float32)
-    V = np.stack([np.sin(tv), np.zeros_like(tv), np.cos(tv)], axis=-1).astype(np.float32)
+    if plane == "inplane":
+        tl, tv = np.meshgrid(np.radians(theta), np.radians(theta))
+        L = np.stack([-np.sin(tl), np.zeros_like(tl), np.cos(tl)], axis=-1).astype(np.float32)
+        V = np.stack([np.sin(tv), np.zeros_like(tv), np.cos(tv)], axis=-1).astype(np.float32)
+    else:
+        Ld, Vd = halfdiff_directions(theta, theta)
+        L, V = Ld.astype(np.float32), Vd.astype(np.float32)
     opts: Dict[str, Any] = dict(sheen_visibility=sheen_visibility, sheen_distribution=sheen_distribution,
                 sheen_scaling=sheen_scaling, device=device)
     fa = _evaluate(m, L.reshape(-1, 3), V.reshape(-1, 3), lobe=lobe, profile=profile, **opts).reshape(n, n, 3)
@@ -446,7 +460,8 @@ def compare(materials: MaterialsLike, material: int = 0, *, profile: str = "khro
         ratio = np.log2(np.maximum(ya, floor) / np.maximum(yb, floor))
     bad = ~(np.isfinite(ya) & np.isfinite(yb))
     ratio[bad] = np.nan
-    arrays = {"theta_l_deg": theta, "theta_v_deg": theta, "L": L, "V": V, "f_a": fa, "f_b": fb, "floor": floor,
+    axes = ("theta_l_deg", "theta_v_deg") if plane == "inplane" else ("theta_h_deg", "theta_d_deg")
+    arrays = {axes[0]: theta, axes[1]: theta, "L": L, "V": V, "f_a": fa, "f_b": fb, "floor": floor,
               "log2_ratio": ratio}
     max_abs = float(np.nanmax(np.abs(ratio))) if np.any(~bad) else 0.0
     limit = next((r for r in (0.25, 0.5, 1.0, 2.0, 4.0, 8.0) if max_abs <= r), 8.0)
@@ -454,10 +469,15 @@ def compare(materials: MaterialsLike, material: int = 0, *, profile: str = "khro
     im = a.imshow(np.ma.masked_invalid(ratio), origin="lower", extent=(0, 90, 0, 90), cmap=_cmap("RdBu_r", "magenta"),
                   norm=Normalize(-limit, limit, clip=True), interpolation="nearest", aspect="equal")
     fig.colorbar(im, ax=a, label=f"log2(f_{profile} / f_{against}), luminance (unitless)")
-    a.set_xlabel("θ_L (degrees), L at φ = 180°")
-    a.set_ylabel("θ_V (degrees), V at φ = 0")
+    if plane == "inplane":
+        a.set_xlabel("θ_L (degrees), L at φ = 180°")
+        a.set_ylabel("θ_V (degrees), V at φ = 0")
+    else:
+        a.set_xlabel("θ_h (degrees), φ_h = 0")
+        a.set_ylabel("θ_d (degrees), φ_d = 90°")
     extra = f"; magenta: {int(bad.sum())} cell(s) not finite" if bad.any() else ""
-    a.set_title(f"{name}: {profile} vs {against}, in-plane, max |log2| {max_abs:.3g}{extra}\n"
+    where = "in-plane" if plane == "inplane" else "half/difference angles"
+    a.set_title(f"{name}: {profile} vs {against}, {where}, max |log2| {max_abs:.3g}{extra}\n"
                 f"lobe {lobe}, sheen V {sheen_visibility}, D {sheen_distribution}, scaling {sheen_scaling}, "
                 f"floor {floor:.3g} 1/sr", fontsize=9)
     return Plot(fig, arrays)
@@ -470,28 +490,12 @@ def tone_map(radiance: Any, exposure: float = 0.0) -> np.ndarray:
     Neutral, the sRGB OETF, 8-bit rounding; returned as float32 in [0, 1] (the 8-bit value / 255)."""
     if not (isinstance(exposure, (int, float, np.floating)) and math.isfinite(exposure)):
         raise InputError(f"exposure must be a finite number of stops, got {exposure!r}")
-    rgb = np.asarray(radiance, dtype=np.float32)
+    rgb = np.asarray(radiance)
     if rgb.ndim != 3 or rgb.shape[2] != 3:
         raise InputError(f"the image must have shape (H, W, 3), got {tuple(rgb.shape)}")
-    c = rgb * np.float32(2.0 ** exposure)
-    with np.errstate(invalid="ignore", over="ignore", divide="ignore"):
-        c = np.where(c > 0, np.minimum(c, np.finfo(np.float32).max), np.float32(0)).astype(np.float32)
-        x = c.min(axis=2, keepdims=True)
-        offset = np.where(x < 0.08, x - np.float32(6.25) * x * x, np.float32(0.04)).astype(np.float32)
-        c = c - offset
-        peak = c.max(axis=2, keepdims=True)
-        start = np.float32(0.8 - 0.04)
-        d = np.float32(1) - start
-        new_peak = np.float32(1) - d * d / (peak + d - start)
-        scaled = c * (new_peak / peak)
-        g = np.float32(1) - np.float32(1) / (np.float32(0.15) * (peak - new_peak) + np.float32(1))
-        compressed = scaled * (np.float32(1) - g) + new_peak * g
-        c = np.where(peak < start, c, compressed)
-    v = np.clip(np.where(c > 0, c, 0), 0, 1).astype(np.float32)
-    e = np.where(v <= np.float32(0.0031308), np.float32(12.92) * v,
-                 np.float32(1.055) * np.power(v, np.float32(1 / 2.4)) - np.float32(0.055))
-    # lround of a non-negative value: halves away from zero, not numpy's halves to even.
-    return (np.floor(np.clip(e, 0, 1).astype(np.float32) * np.float32(255) + 0.5) / 255).astype(np.float32)
+    # The library's own pipeline (the bytes `brdfcl render --out x.png` writes), not a copy of it.
+    rgb8 = _core.tone_map(np.ascontiguousarray(rgb, dtype=np.float32), float(exposure))
+    return (rgb8 / np.float32(255)).astype(np.float32)
 
 
 def image(radiance: Any = None, *, exposure: float = 0.0, gltf: Optional[Union[str, "os.PathLike[str]"]] = None,
@@ -527,3 +531,68 @@ def image(radiance: Any = None, *, exposure: float = 0.0, gltf: Optional[Union[s
     a.set_title(title if title is not None else f"{caption}, exposure {exposure:+g} stops (PBR Neutral, sRGB)",
                 fontsize=9)
     return Plot(fig, {"radiance": rad, "display": display})
+
+
+# ---- diff: two renders' relative luminance difference ----
+
+def diff(a: Any, b: Any, *, threshold: float = 0.01, floor: Optional[float] = None, range: Optional[float] = None,
+         names: Optional[Tuple[str, str]] = None, figsize: Optional[Tuple[float, float]] = None, dpi: float = 100,
+         ax: Optional[Axes] = None) -> Plot:
+    """`brdfcl diff A B`'s picture with its legend: d = (Y_A - Y_B) / max(Y_B, floor) per pixel
+    (Y the Rec. 709 luminance, B the reference) in a diverging map over ±range (default: the
+    99th percentile of |d|, as the CLI), magenta where a pixel is not finite in A or B, titled
+    with the statistics the CLI prints. a, b: EXR paths (read and checked as the CLI reads them)
+    or float (H, W, 3) linear images of one shape. threshold, floor: as --threshold, --floor.
+    names: how the title names a and b (default: the paths, or "A" and "B" for arrays).
+
+    arrays: relative (H, W) float32 (d; NaN where not compared), stats (the dict `brdfcl diff
+    --json` prints, "range" the colour range drawn).
+    """
+    import json
+
+    for name, v, positive in (("threshold", threshold, False), ("floor", floor, True), ("range", range, True)):
+        if v is None:
+            continue
+        if isinstance(v, bool) or not isinstance(v, (int, float, np.floating)) or not math.isfinite(v) or v < 0 \
+                or (positive and v == 0):
+            raise InputError(f"{name} must be a finite number {'> 0' if positive else '>= 0'}, got {v!r}")
+    paths = [isinstance(x, (str, os.PathLike)) for x in (a, b)]
+    if all(paths):
+        name_a, name_b = os.fspath(a), os.fspath(b)
+        relative, report, default_range = _core.image_diff_files(name_a, name_b, float(threshold), float(floor or 0))
+    elif not any(paths):
+        name_a, name_b = ("A", "B") if names is None else (str(n) for n in names)
+        arrs = [np.ascontiguousarray(x, dtype=np.float32) for x in (a, b)]
+        for label, x in zip(("A", "B"), arrs):
+            if x.ndim != 3 or x.shape[2] != 3:
+                raise InputError(f"{label} must have shape (H, W, 3), got {tuple(x.shape)}")
+        if arrs[0].shape != arrs[1].shape:
+            raise InputError(f"the images differ in shape: A is {arrs[0].shape}, B is {arrs[1].shape}; "
+                             "compare renders of the same size")
+        relative, report, default_range = _core.image_diff_arrays(arrs[0], arrs[1], float(threshold),
+                                                                  float(floor or 0), name_a, name_b)
+    else:
+        raise InputError("a and b must both be EXR paths or both be image arrays")
+    if names is not None:
+        name_a, name_b = (str(n) for n in names)
+    stats = json.loads(report)
+    limit = float(range) if range is not None else float(default_range)
+    stats["range"] = limit
+    h, w = relative.shape
+    if figsize is None:
+        figsize = (7.0, max(2.5, 7.0 * h / w * 0.8 + 1.2))
+    fig, axes = _single_axes(ax, figsize, dpi)
+    im = axes.imshow(np.ma.masked_invalid(relative), cmap=_cmap("RdBu_r", "magenta"),
+                     norm=Normalize(-limit, limit, clip=True), interpolation="nearest")
+    fig.colorbar(im, ax=axes, label=f"d, clipped at |d| = {limit:.4g}")
+    axes.set_xlabel("x (pixels)")
+    axes.set_ylabel("y (pixels)")
+    rel = stats["relative"]
+    lines = [f"A: {_plain(name_a)}", f"B: {_plain(name_b)}", f"d = (Y_A - Y_B) / max(Y_B, {stats['floor']:.4g})"]
+    if stats["compared"] > 0:
+        lines.append(f"max |d| {rel['max_abs']:.4g} at ({rel['max_x']}, {rel['max_y']}), mean |d| {rel['mean_abs']:.4g}, "
+                     f"p99 {rel['p99']:.4g}")
+    if stats["compared"] < stats["pixels"]:
+        lines.append(f"magenta: {stats['pixels'] - stats['compared']} pixels not finite in A or B")
+    axes.set_title("Relative luminance difference of A and B\n" + "\n".join(lines), fontsize=8)
+    return Plot(fig, {"relative": relative, "stats": stats})

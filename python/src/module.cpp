@@ -7,6 +7,7 @@
 #include <nanobind/stl/map.h>
 #include <nanobind/stl/pair.h>
 #include <nanobind/stl/string.h>
+#include <nanobind/stl/tuple.h>
 #include <nanobind/stl/vector.h>
 
 #include <cmath>
@@ -26,6 +27,7 @@
 #include "brdfcl/evaluator.hpp"
 #include "brdfcl/gbuffer.hpp"
 #include "brdfcl/image.hpp"
+#include "brdfcl/image_diff.hpp"
 #include "brdfcl/io.hpp"
 #include "brdfcl/lut.hpp"
 #include "brdfcl/material.hpp"
@@ -33,6 +35,8 @@
 #include "brdfcl/render_job.hpp"
 #include "brdfcl/runtime.hpp"
 #include "brdfcl/scene.hpp"
+#include "host/src/io/option_style.hpp"
+#include "host/src/model/pack.hpp"
 
 namespace nb = nanobind;
 using namespace nb::literals;
@@ -82,6 +86,7 @@ brdfcl::EvalOptions evalOptions(const std::string& lobe, const std::string& visi
   o.sheenDistribution = brdfcl::parseSheenDistribution(distribution);
   o.sheenScaling = brdfcl::parseSheenScaling(scaling);
   o.lobe = brdfcl::parseLobe(lobe);
+  brdfcl::checkProfileOptions(o);
   return o;
 }
 
@@ -287,6 +292,8 @@ nb::ndarray<nb::numpy, float> imageToNumpy(brdfcl::Image&& img) {
 
 NB_MODULE(_core, m) {
   m.doc() = "brdfcl's C++ host library (brdfcl_core); use the brdfcl package, not this module.";
+  // Every message names options as this process's callers write them: lobe=, not --lobe.
+  brdfcl::setOptionStyle(brdfcl::OptionStyle::Python);
   // brdfcl.Error is the base of one class per brdfcl::ErrorKind, each also deriving the built-in
   // class a Python caller expects of that kind, so `except brdfcl.Error` and `except ValueError`
   // (or OSError, RuntimeError, MemoryError) both catch it.
@@ -328,6 +335,9 @@ NB_MODULE(_core, m) {
       PyErr_SetString(kindClass[3] /* Memory */, brdfcl::outOfMemoryMessage().c_str());
     }
   });
+
+  // `python -m brdfcl` is a command line: its messages name its --options, as the CLI's do.
+  m.def("set_cli_option_style", [] { brdfcl::setOptionStyle(brdfcl::OptionStyle::Cli); });
 
   m.def("devices", [] {
     std::vector<nb::dict> out;
@@ -424,8 +434,7 @@ NB_MODULE(_core, m) {
            [](Device& d, brdfcl::RenderJob job, const std::string& ibl, int iblSamples, bool iblSamplesGiven) {
              job.shade.ibl = brdfcl::parseIblMode(ibl);
              brdfcl::checkIblSamples(iblSamples);
-             if (job.shade.ibl != brdfcl::IblMode::Exact && iblSamplesGiven)
-               throw Error("ibl_samples applies to ibl='exact'; add ibl='exact'");
+             brdfcl::checkIblSamplesApply(job.shade.ibl, iblSamplesGiven);
              job.shade.iblSamples = iblSamples;
              std::vector<std::string> warnings;
              job.warn = [&warnings](const std::string& w) { warnings.push_back(w); };
@@ -446,9 +455,6 @@ NB_MODULE(_core, m) {
              so.ibl = brdfcl::parseIblMode(ibl);
              brdfcl::checkIblSamples(iblSamples);
              so.iblSamples = iblSamples;
-             if (so.ibl == brdfcl::IblMode::Exact && o.profile != brdfcl::Profile::Spec)
-               throw Error("ibl='exact' integrates the spec's BRDF only; profile '" + profile +
-                           "' reproduces its engine's own image-based light, so use ibl='split-sum' with it");
              brdfcl::Image img;
              {
                nb::gil_scoped_release release;
@@ -508,6 +514,56 @@ NB_MODULE(_core, m) {
     }
     return imageToNumpy(std::move(img));
   }, "path"_a);
+
+  // `brdfcl render`'s PNG pixels (exposure, PBR Neutral, sRGB, 8 bits) of a C-contiguous float32 (H, W, 3) array.
+  m.def("tone_map", [](const nb::ndarray<const float, nb::ndim<3>, nb::c_contig, nb::device::cpu>& rgb, float exposure) {
+    if (rgb.shape(2) != 3) throw Error("the image must have shape (H, W, 3), got " + std::to_string(rgb.shape(2)) + " channels");
+    const std::size_t h = rgb.shape(0), w = rgb.shape(1);
+    std::vector<std::uint8_t> bytes;
+    {
+      nb::gil_scoped_release release;
+      bytes = brdfcl::displayRgb8(rgb.data(), h * w, exposure);
+    }
+    auto* held = new std::vector<std::uint8_t>(std::move(bytes));
+    nb::capsule owner(held, [](void* p) noexcept { delete static_cast<std::vector<std::uint8_t>*>(p); });
+    return nb::ndarray<nb::numpy, std::uint8_t>(held->data(), {h, w, 3}, owner);
+  }, "rgb"_a, "exposure"_a);
+  // `brdfcl diff`'s numbers: d per pixel (H, W), the report as JSON text, and the default colour
+  // range; of two EXR files (the CLI's reader and checks) or two arrays of one shape.
+  const auto diffResult = [](brdfcl::ImageDiff&& d, const std::string& nameA, const std::string& nameB) {
+    const double range = brdfcl::defaultDiffRange(d.stats);
+    const std::string json = brdfcl::imageDiffJson(d.stats, nameA, nameB, range, "");
+    const auto h = std::size_t(d.stats.height), w = std::size_t(d.stats.width);
+    return std::make_tuple(toNumpy(std::move(d.relative), {h, w}), json, range);
+  };
+  m.def("image_diff_files", [diffResult](const std::string& a, const std::string& b, double threshold, double floor) {
+    brdfcl::ImageDiffOptions o;
+    o.threshold = threshold;
+    o.floor = floor;
+    brdfcl::ImageDiff d;
+    {
+      nb::gil_scoped_release release;
+      d = brdfcl::diffExrFiles(a, b, o);
+    }
+    return diffResult(std::move(d), a, b);
+  }, "a"_a, "b"_a, "threshold"_a, "floor"_a);
+  m.def("image_diff_arrays", [diffResult](const nb::ndarray<const float, nb::ndim<3>, nb::c_contig, nb::device::cpu>& a,
+                                          const nb::ndarray<const float, nb::ndim<3>, nb::c_contig, nb::device::cpu>& b,
+                                          double threshold, double floor, const std::string& nameA, const std::string& nameB) {
+    if (a.shape(2) != 3 || b.shape(2) != 3 || a.shape(0) != b.shape(0) || a.shape(1) != b.shape(1))
+      throw Error("internal: image_diff_arrays takes two (H, W, 3) arrays of one shape", 3);
+    const int h = int(a.shape(0)), w = int(a.shape(1));
+    brdfcl::ImageDiffOptions o;
+    o.threshold = threshold;
+    o.floor = floor;
+    brdfcl::ImageDiff d;
+    {
+      nb::gil_scoped_release release;
+      d = brdfcl::diffImages(std::vector<float>(a.data(), a.data() + a.size()),
+                             std::vector<float>(b.data(), b.data() + b.size()), w, h, o);
+    }
+    return diffResult(std::move(d), nameA, nameB);
+  }, "a"_a, "b"_a, "threshold"_a, "floor"_a, "name_a"_a, "name_b"_a);
 
   nb::class_<brdfcl::Scene>(m, "Scene");
   m.def("read_scene", &brdfcl::readScene, "path"_a, "allow_outside"_a = false);

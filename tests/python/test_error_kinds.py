@@ -70,4 +70,4 @@ def test_frame_too_large_is_a_memory_error():
             assert isinstance(e, brdfcl.OutOfMemoryError) and e.kind == "memory"
             print("OK", e)
         """, preexec_fn=limit)
-    assert r.returncode == 0 and r.stdout.startswith("OK --size 16384x16384 needs about"), r.stdout + r.stderr
+    assert r.returncode == 0 and r.stdout.startswith("OK size=16384x16384 needs about"), r.stdout + r.stderr

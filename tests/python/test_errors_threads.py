@@ -75,16 +75,18 @@ def test_bad_material_key_and_value():
 
 
 def test_unknown_option_values():
-    raises(r"--lobe", brdfcl.evaluate, M, L, V, lobe="specularr")
-    raises(r"--profile", brdfcl.evaluate, M, L, V, profile="unreal")
-    raises(r"--sheen-scaling", brdfcl.evaluate, M, L, V, sheen_scaling="max")
-    raises(r"applies to --profile spec only", brdfcl.evaluate, M, L, V, profile="threejs",
-           sheen_visibility="ashikhmin")
-    raises(r"--kind", brdfcl.lut, "dfg")
+    raises(r"^unknown lobe= value 'specularr'; use all, diffuse, specular, sheen or clearcoat$", brdfcl.evaluate, M, L,
+           V, lobe="specularr")
+    raises(r"^unknown profile= value 'unreal'", brdfcl.evaluate, M, L, V, profile="unreal")
+    raises(r"^unknown sheen_scaling= value 'max'", brdfcl.evaluate, M, L, V, sheen_scaling="max")
+    raises(r"^sheen_visibility= applies to profile='spec' only; profile='threejs' uses its engine's own sheen",
+           brdfcl.evaluate, M, L, V, profile="threejs", sheen_visibility="ashikhmin")
+    raises(r"^unknown kind= value 'dfg'", brdfcl.lut, "dfg")
     raises(r"^sheen_visibility applies to kind 'sheen-e' only", brdfcl.lut, "ggx-dfg", sheen_visibility="charlie")
     raises(r"out of range; use 2 to 4096", brdfcl.lut, "ggx-dfg", 1)
     raises(r"^unknown built-in scene 'cubes'; use spheres$", brdfcl.render, scene="cubes", size=(8, 8))
-    raises(r"^--spp applies to glTF assets", brdfcl.render, size=(8, 8), spp=2)
+    raises(r"^spp= applies to glTF assets \(the spheres are shaded at pixel centres\); add gltf=FILE$", brdfcl.render,
+           size=(8, 8), spp=2)
 
 
 def test_four_threads_equal_serial():

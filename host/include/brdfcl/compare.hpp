@@ -104,9 +104,13 @@ Comparison compareProfiles(Runtime& rt, const std::vector<MaterialParams>& mater
 std::string formatComparison(const Comparison& c);
 std::string comparisonJson(const Comparison& c, const std::vector<std::vector<std::string>>& heatMapPaths = {});
 
-// The heat maps of one material: the log2 ratio in a diverging map centred on ratio 1, each grid
-// cell drawn as a square of pixels, with title, axes in degrees and a colour bar.
+// The heat maps of one material: the log2 ratio in a diverging map centred on ratio 1 over
+// +-ratioMapRange, each grid cell drawn as a square of pixels, theta_V (or theta_d) rising upwards,
+// without text (`python -m brdfcl plot compare` draws the labelled figure).
 plot::Figure drawRatioMap(const Comparison& c, const MaterialComparison& m, bool halfDiff);
+// The colour range of a log2-ratio field: the first of 0.25, 0.5, 1, 2, 4, 8 that holds its
+// largest finite |value| (8 beyond).
+double ratioMapRange(const std::vector<float>& field);
 // "<index>_<name>_<A>_vs_<B>", the name reduced to letters, digits, '-', '.' and '_'.
 std::string compareFileStem(const MaterialComparison& m, Profile a, Profile b);
 // Writes dir/<stem>_inplane.png and dir/<stem>_halfdiff.png (each atomically) and returns them.

@@ -2,6 +2,7 @@
 // the checked low-level EXR channel reader shared with the G-buffer, and the PNG display
 // pipeline (exposure -> Khronos PBR Neutral tone mapping -> sRGB OETF -> 8-bit PNG).
 #pragma once
+#include <cstddef>
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -65,6 +66,11 @@ void toneMapPbrNeutral(std::vector<float>& rgb);
 // clamped to [0, 1] (NaN -> 0), then round-to-nearest to 0..255. So 0.0031308 -> 10
 // (0.04045·255 = 10.31), 0.5 -> 188 (0.73536·255 = 187.52), 1 -> 255.
 std::uint8_t encodeSrgb8(float linear);
+
+// The display pipeline on `pixels` interleaved linear RGB pixels: each component times
+// 2^exposure, PBR Neutral, sRGB-encoded to 8 bits (the bytes writePng encodes). exposure must
+// be finite (the caller checks).
+std::vector<std::uint8_t> displayRgb8(const float* linearRgb, std::size_t pixels, float exposure);
 
 // The display pipeline: each component times 2^exposure, PBR Neutral, sRGB-encoded to 8 bits,
 // written as an RGB PNG with stb_image_write through writeAtomically (no partial file on

@@ -79,12 +79,10 @@ std::string imageDiffJson(const ImageDiffStats& stats, const std::string& nameA,
                           double range, const std::string& out);
 
 // The false-colour picture of d: the image at its own size in the diverging map over
-// [-range, +range] (beyond: the end colours; not compared: plot::kNotFinite), pixel axes, a
-// colour bar, a title naming both images and a line with max, mean and p99 of |d|.
+// [-range, +range] (beyond: the end colours; not compared: plot::kNotFinite), without text.
 // range > 0 and finite, else std::invalid_argument.
-plot::Figure drawImageDiff(const ImageDiff& diff, const std::string& nameA, const std::string& nameB, double range);
+plot::Figure drawImageDiff(const ImageDiff& diff, double range);
 // drawImageDiff written as a PNG through writeAtomically.
-void writeImageDiffPng(const std::string& path, const ImageDiff& diff, const std::string& nameA,
-                       const std::string& nameB, double range);
+void writeImageDiffPng(const std::string& path, const ImageDiff& diff, double range);
 
 }  // namespace brdfcl

@@ -55,6 +55,8 @@ IblMode parseIblMode(const std::string& s);  // "split-sum" | "exact"; else a on
 const char* toString(IblMode m);
 constexpr int kMaxIblSamples = 65536;
 void checkIblSamples(int samples);  // 1..kMaxIblSamples; else a one-line Error naming --ibl-samples
+// A sample count given with the split sum, which takes none: an Error naming both options.
+void checkIblSamplesApply(IblMode mode, bool samplesGiven);
 
 struct ShadeOptions {
   IblMode ibl = IblMode::SplitSum;

@@ -25,6 +25,7 @@
 #include "io/messages.hpp"
 #include "io/output.hpp"
 #include "eval/sheen_albedo_bake.hpp"
+#include "io/option_style.hpp"
 #include "model/pack.hpp"
 
 namespace brdfcl {
@@ -202,7 +203,7 @@ LutKind parseLutKind(const std::string& s) {
   if (s == "sheen-e") return LutKind::SheenE;
   if (s == "ggx-dfg") return LutKind::GgxDfg;
   if (s == "charlie-dfg") return LutKind::CharlieDfg;
-  throw Error("unknown --kind value '" + detail::printable(s) + "'; use sheen-e, ggx-dfg or charlie-dfg");
+  throw Error("unknown " + optionName("--kind") + " value '" + detail::printable(s) + "'; use sheen-e, ggx-dfg or charlie-dfg");
 }
 
 const char* toString(LutKind k) {

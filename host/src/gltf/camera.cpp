@@ -8,6 +8,7 @@
 
 #include "brdfcl/error.hpp"
 #include "brdfcl/gltf_render.hpp"
+#include "io/option_style.hpp"
 
 namespace brdfcl::gltf {
 namespace {
@@ -33,7 +34,7 @@ const Camera* findCamera(const Asset& asset, const std::string& arg) {
   if (arg == "auto") return nullptr;
   const bool digits = arg.size() <= 9 && std::all_of(arg.begin(), arg.end(), [](char c) { return c >= '0' && c <= '9'; });
   if (!digits)
-    throw Error("--camera '" + arg + "': expected auto or a glTF camera index (a number such as 0)");
+    throw Error(optionWithValue("--camera", "'" + arg + "'") + ": expected auto or a glTF camera index (a number such as 0)");
   const int index = std::stoi(arg);
   for (const Camera& c : asset.cameras)
     if (c.index == index) return &c;
@@ -43,7 +44,7 @@ const Camera* findCamera(const Asset& asset, const std::string& arg) {
   used.erase(std::unique(used.begin(), used.end()), used.end());
   std::string available;
   for (int i : used) available += (available.empty() ? " " : ", ") + std::to_string(i);
-  throw Error("--camera " + arg + ": no node of the scene uses cameras[" + arg + "]" +
+  throw Error(optionWithValue("--camera", arg, true) + ": no node of the scene uses cameras[" + arg + "]" +
               (available.empty() ? std::string("; the scene has no camera nodes, use auto")
                                  : "; cameras used by the scene:" + available));
 }

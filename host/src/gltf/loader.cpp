@@ -25,6 +25,7 @@
 #include "io/glb.hpp"
 #include "io/input_limits.hpp"
 #include "io/messages.hpp"
+#include "io/option_style.hpp"
 
 namespace brdfcl::gltf {
 namespace {
@@ -129,7 +130,9 @@ std::string refusal(const Context& ctx, const External& e, const std::string& wh
   throw Error(refusal(ctx, e, what));
 }
 
-constexpr const char* kOutside = "points outside the asset's folder; move the file into the folder, or pass --allow-outside-uris";
+std::string outsideRefusal() {
+  return "points outside the asset's folder; move the file into the folder, or pass " + flagName("--allow-outside-uris");
+}
 
 // A URI's own refusals, before any file is looked at: what lies outside the folder is not
 // stat'ed, so a refusal says nothing about it. Registers the URI for readFile.
@@ -144,7 +147,7 @@ void registerUri(Context& ctx, const std::string& label, const std::string& fiel
     if (e.name.find('\0') != std::string::npos)
       refuse(ctx, e, "holds a NUL character (%00) once percent-decoded; re-export the file");
     if (!ctx.options.allowOutsideUris && !brdfcl::detail::staysInside(e.name))
-      refuse(ctx, e, kOutside);
+      refuse(ctx, e, outsideRefusal());
   }
   ctx.files[resolved(ctx.baseDir, uri)] = std::move(e);
 }
@@ -268,10 +271,10 @@ bool readFile(std::vector<unsigned char>* out, std::string* err, const std::stri
       out->assign(data.begin(), data.end());
       return true;
     case Outcome::Outside:
-      return failed(refusal(ctx, e, kOutside));
+      return failed(refusal(ctx, e, outsideRefusal()));
     case Outcome::Link:
       return failed(refusal(ctx, e, "is or passes through a symbolic link, which brdfcl does not follow from an "
-                                    "asset's folder; copy the file in, or pass --allow-outside-uris"));
+                                    "asset's folder; copy the file in, or pass " + flagName("--allow-outside-uris")));
     case Outcome::NotRegular:
       return failed(refusal(ctx, e, "is not a regular file (a directory, FIFO or device); name a file"));
     case Outcome::TooSmall:

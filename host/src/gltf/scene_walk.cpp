@@ -16,6 +16,7 @@
 #include "gltf/document.hpp"
 #include "gltf/tangents.hpp"
 #include "io/messages.hpp"
+#include "io/option_style.hpp"
 
 namespace brdfcl::gltf::detail {
 namespace {
@@ -347,7 +348,8 @@ int chooseVariant(const Asset& asset, const LoadOptions& options, const Document
   if (it != asset.variants.end()) return int(it - asset.variants.begin());
   std::string names;
   for (const auto& v : asset.variants) names += (names.empty() ? "" : ", ") + brdfcl::detail::printable(v, 80);
-  throw Error(doc.source() + ": --variant '" + brdfcl::detail::printable(options.variant, 80) + "' is not a variant of this file; " +
+  throw Error(doc.source() + ": " +
+              optionWithValue("--variant", "'" + brdfcl::detail::printable(options.variant, 80) + "'") + " is not a variant of this file; " +
               (names.empty() ? "it has none" : "it has: " + names));
 }
 

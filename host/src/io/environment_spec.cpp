@@ -15,16 +15,17 @@
 #include "io/messages.hpp"
 #include "brdfcl/error.hpp"
 #include "brdfcl/scene.hpp"
+#include "io/option_style.hpp"
 
 namespace brdfcl {
 
 Environment parseEnvironmentSpec(const std::string& spec, float intensity, float rotation) {
-  const std::string shown = "--environment '" + detail::printable(spec, 300, ' ') + "'";
+  const std::string shown = optionWithValue("--environment", "'" + detail::printable(spec, 300, ' ') + "'");
   if (!std::isfinite(intensity) || intensity < 0.0f)
-    throw Error("--env-intensity " + detail::formatNumber(intensity) +
+    throw Error(optionWithValue("--env-intensity", detail::formatNumber(intensity)) +
                 " is not a finite number >= 0; give a radiance scale such as 1 or 0.5");
   if (!std::isfinite(rotation))
-    throw Error("--env-rotation " + detail::formatNumber(rotation) +
+    throw Error(optionWithValue("--env-rotation", detail::formatNumber(rotation)) +
                 " is not a finite number of radians; give an angle such as 0 or 1.5708");
   Environment e;
   e.intensity = intensity;

@@ -14,6 +14,7 @@
 #include <fmt/format.h>
 
 #include "brdfcl/error.hpp"
+#include "io/option_style.hpp"
 
 namespace brdfcl {
 
@@ -63,9 +64,10 @@ void checkFrameFits(FrameJob job, int width, int height, std::uint64_t hostLimit
   const std::uint64_t maxPx = hostLimit > kBaseBytes ? (hostLimit - kBaseBytes) / hostBytesPerPixel(job) : 0;
   const double scale = std::sqrt(double(maxPx) / (double(width) * double(height)));
   const int fitW = std::max(1, int(std::floor(width * scale))), fitH = std::max(1, int(std::floor(height * scale)));
-  throw Error(ErrorKind::Memory, fmt::format("{} {}x{} needs about {:.1f} GiB of memory, but this process may use {:.1f} GiB; the largest "
+  throw Error(ErrorKind::Memory, fmt::format("{} needs about {:.1f} GiB of memory, but this process may use {:.1f} GiB; the largest "
                           "size of that shape that fits is {}x{}",
-                          option, width, height, gib(need), gib(hostLimit), fitW, fitH));
+                          optionWithValue(option, fmt::format("{}x{}", width, height)), gib(need), gib(hostLimit),
+                          fitW, fitH));
 }
 
 int bandRows(const DeviceInfo& device, int width, std::size_t bytesPerPixel) {

@@ -35,6 +35,7 @@
 #include "brdfcl/error.hpp"
 #include "brdfcl/image.hpp"
 #include "brdfcl/io.hpp"
+#include "io/option_style.hpp"
 
 namespace brdfcl {
 namespace {
@@ -435,7 +436,9 @@ GBuffer readGBuffer(const std::string& path, const GBufferReadOptions& options) 
                     (std::isnan(v) ? "nan" : v > 0 ? "inf" : "-inf") + ") in channel '" + printable(chosenNames[p]) +
                     "'; fix the renderer's output");
       }
-  if (options.check) checkValues(planes, sources, chosenNames, g.width, shown, "--no-check");
+  if (options.check)
+    checkValues(planes, sources, chosenNames, g.width, shown,
+                optionStyle() == OptionStyle::Python ? "check=False" : "--no-check");
   for (const Source& s : sources) {
     const std::size_t k = std::max<std::size_t>(1, std::char_traits<char>::length(s.field->suffixes));
     std::vector<float>& out = g.*(s.field->member);

@@ -243,18 +243,23 @@ std::uint8_t encodeSrgb8(float linear) {
   return static_cast<std::uint8_t>(std::lround(std::clamp(e, 0.0f, 1.0f) * 255.0f));
 }
 
+std::vector<std::uint8_t> displayRgb8(const float* linearRgb, std::size_t pixels, float exposure) {
+  const float scale = std::exp2(exposure);
+  std::vector<std::uint8_t> out(3 * pixels);
+  for (std::size_t i = 0; i < out.size(); i += 3) {
+    const Rgb t = toneMapPbrNeutral(Rgb{linearRgb[i] * scale, linearRgb[i + 1] * scale, linearRgb[i + 2] * scale});
+    for (int c = 0; c < 3; ++c) out[i + c] = encodeSrgb8(t[c]);
+  }
+  return out;
+}
+
 void writePng(const std::string& path, int width, int height, const std::vector<float>& linearRgb, float exposure) {
   if (width < 1 || height < 1 ||
       linearRgb.size() != 3 * static_cast<std::size_t>(width) * static_cast<std::size_t>(height))
     throw std::invalid_argument("writePng: linearRgb must hold 3 * width * height floats");
   if (!std::isfinite(exposure))
     throw Error("cannot write '" + printable(path) + "': exposure must be a finite number of stops");
-  const float scale = std::exp2(exposure);
-  std::vector<std::uint8_t> pixels(linearRgb.size());
-  for (std::size_t i = 0; i < linearRgb.size(); i += 3) {
-    const Rgb t = toneMapPbrNeutral(Rgb{linearRgb[i] * scale, linearRgb[i + 1] * scale, linearRgb[i + 2] * scale});
-    for (int c = 0; c < 3; ++c) pixels[i + c] = encodeSrgb8(t[c]);
-  }
+  const std::vector<std::uint8_t> pixels = displayRgb8(linearRgb.data(), linearRgb.size() / 3, exposure);
   const std::string shown = printable(path);
   // Encoded in memory and written here: stbi_write_png ignores the results of fwrite and fclose,
   // so on a full disk it reported success and a truncated PNG was renamed into place.

@@ -10,6 +10,7 @@
 
 #include "brdfcl/error.hpp"
 #include "brdfcl/frame_budget.hpp"
+#include "io/option_style.hpp"
 
 namespace brdfcl {
 namespace detail {
@@ -111,6 +112,7 @@ std::string outOfMemoryMessage() {
   if (!detail::tCurrentInput.empty())
     return "out of memory while reading '" + detail::tCurrentInput +
            "'; free memory, or check that the file is what it claims to be";
+  if (optionStyle() == OptionStyle::Python) return "out of memory; try smaller arrays or a smaller size=, or free memory";
   return "out of memory; try a smaller --size or --chunk, or free memory";
 }
 

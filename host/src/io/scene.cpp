@@ -23,6 +23,7 @@
 #include <string>
 
 #include "brdfcl/error.hpp"
+#include "io/option_style.hpp"
 
 namespace brdfcl {
 namespace {
@@ -246,11 +247,11 @@ class SceneReader {
       if (const int fd = detail::openInside(baseDir_, name, rules, opened); fd >= 0) ::close(fd);
       using Outcome = detail::Opened::Outcome;
       if (opened.outcome == Outcome::Outside)
-        throw Error(shown + "points outside the scene file's folder; move the file into the folder, or pass "
-                            "--allow-outside-uris");
+        throw Error(shown + "points outside the scene file's folder; move the file into the folder, or pass " +
+                    flagName("--allow-outside-uris"));
       if (opened.outcome == Outcome::Link)
         throw Error(shown + "is or passes through a symbolic link, which brdfcl does not follow from a scene file's "
-                            "folder; copy the file in, or pass --allow-outside-uris");
+                            "folder; copy the file in, or pass " + flagName("--allow-outside-uris"));
       if (opened.outcome == Outcome::NotRegular)
         throw Error(shown + "is not a regular file (a directory, FIFO or device); name a file");
       if (opened.outcome != Outcome::Ok)

@@ -10,7 +10,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include "brdfcl/error.hpp"
 #include "io/messages.hpp"
+#include "io/option_style.hpp"
 
 namespace brdfcl::detail {
 namespace {
@@ -207,7 +209,7 @@ void checkMaterialKeys(const json& material, const std::string& path, MaterialKe
 std::string strictError(std::string finding) {
   if (const auto at = finding.find(", ignored"); at != std::string::npos) finding.erase(at, 9);
   if (const auto at = finding.find(": ignored: "); at != std::string::npos) finding.replace(at, 11, ": not evaluated: ");
-  return finding + " (an error under --strict)";
+  return finding + " (an error under " + flagName("--strict") + ")";
 }
 
 }  // namespace brdfcl::detail

@@ -6,6 +6,7 @@
 #include "brdfcl/error.hpp"
 #include "brdfcl/material.hpp"
 #include "brdfcl/profile_version.hpp"
+#include "io/option_style.hpp"
 
 namespace brdfcl {
 namespace {
@@ -78,7 +79,7 @@ E parseFrom(const Spelling<E> (&table)[N], const char* option, const std::string
     if (i > 0) accepted += (i + 1 == N) ? " or " : ", ";
     accepted += table[i].name;
   }
-  throw Error(std::string("unknown ") + option + " value '" + printable(s) + "'; use " + accepted);
+  throw Error("unknown " + optionName(option) + " value '" + printable(s) + "'; use " + accepted);
 }
 
 template <typename E, std::size_t N>

@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 
 #include "brdfcl/error.hpp"
+#include "io/option_style.hpp"
 // Last: the kernels' C++ shim (common/host_compat.h) defines OpenCL names for what follows only.
 #include "kernels/common/material_pack.h"
 
@@ -112,8 +113,9 @@ void checkProfileOptions(const EvalOptions& o) {
                        : o.sheenScaling != defaults.sheenScaling           ? "--sheen-scaling"
                                                                            : nullptr;
   if (o.profile != Profile::Spec && option)
-    throw Error(fmt::format("{} applies to --profile spec only; --profile {} uses its engine's own sheen (docs/profiles.md)",
-                            option, toString(o.profile)));
+    throw Error(fmt::format("{} applies to {} only; {} uses its engine's own sheen (docs/profiles.md)",
+                            optionName(option), optionWithValue("--profile", "spec", true),
+                            optionWithValue("--profile", toString(o.profile), true)));
 }
 
 bool FeatureSet::needsSheenAlbedo(const EvalOptions& o) const {

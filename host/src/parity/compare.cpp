@@ -371,50 +371,29 @@ std::string comparisonJson(const Comparison& c, const std::vector<std::vector<st
   return j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
 }
 
+double ratioMapRange(const std::vector<float>& field) {
+  double maxAbs = 0;
+  for (float v : field)
+    if (std::isfinite(v)) maxAbs = std::max(maxAbs, double(std::fabs(v)));
+  // A range from a short list keeps maps of different materials comparable by eye; beyond 8
+  // (a factor 256) the end colours say enough.
+  for (double r : {0.25, 0.5, 1.0, 2.0, 4.0, 8.0})
+    if (maxAbs <= r) return r;
+  return 8;
+}
+
 plot::Figure drawRatioMap(const Comparison& c, const MaterialComparison& m, bool halfDiff) {
   const std::vector<float>& field = halfDiff ? m.halfDiffLog2Ratio : m.inPlaneLog2Ratio;
   const int n = c.options.gridSize;
   if (field.size() != std::size_t(n) * n)
     throw std::invalid_argument("drawRatioMap: the comparison was made without heat maps");
-  double maxAbs = 0;
-  std::size_t nonFinite = 0;
-  for (float v : field) {
-    if (std::isfinite(v))
-      maxAbs = std::max(maxAbs, double(std::fabs(v)));
-    else
-      ++nonFinite;
-  }
-  // A range from a short list keeps maps of different materials comparable by eye; beyond 8
-  // (a factor 256) the end colours say enough.
-  double range = 8;
-  for (double r : {0.25, 0.5, 1.0, 2.0, 4.0, 8.0})
-    if (maxAbs <= r) {
-      range = r;
-      break;
-    }
+  const double range = ratioMapRange(field);
   // A cell of a coarse grid would be one pixel: enlarge to about 360 pixels a side.
   const int scale = std::max(1, 360 / n), side = n * scale;
   std::vector<float> pixels(std::size_t(side) * side);
   for (int y = 0; y < side; ++y)
     for (int x = 0; x < side; ++x) pixels[std::size_t(y) * side + x] = field[std::size_t(y / scale) * n + x / scale];
-
-  const char* a = toString(c.options.a);
-  const char* b = toString(c.options.b);
   plot::HeatMap h;
-  h.title = fmt::format("[{}] {}: {} vs {}, lobe all", m.index, detail::printable(m.name, 40), a, b);
-  h.subtitle.push_back(halfDiff ? "half/difference angles (Rusinkiewicz), phi_h = 0, phi_d = 90 deg"
-                                : "incidence plane: V at phi 0, L at phi 180 (mirror azimuth)");
-  h.subtitle.push_back(fmt::format("colour: log2(Y_{} / Y_{}), Y = luminance of f, floored at {} 1/sr", a, b,
-                                   detail::formatStat(m.floor)));
-  h.subtitle.push_back(fmt::format("max |log2 ratio| {}{}", detail::formatStat(maxAbs),
-                                   nonFinite ? fmt::format("; magenta: {} cell(s) not finite", nonFinite) : ""));
-  h.xLabel = halfDiff ? "theta_h (deg)" : "theta_L (deg)";
-  h.yLabel = halfDiff ? "theta_d (deg)" : "theta_V (deg)";
-  h.barLabel = fmt::format("log2({} / {})", a, b);
-  h.xLeft = 0;
-  h.xRight = 90;
-  h.yTop = 90;
-  h.yBottom = 0;
   h.map = plot::ColourMap::Diverging;
   h.vMin = -range;
   h.vMax = range;

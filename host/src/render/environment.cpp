@@ -28,6 +28,15 @@ Dir texelDirection(int x, int y, int w, int h) {
   return {std::sin(theta) * std::sin(phi), std::cos(theta), -std::sin(theta) * std::cos(phi)};
 }
 
+constexpr double kSoftEdge = 0.03;
+
+// How far inside an edge a point is, from 0 (kSoftEdge / 2 outside) to 1 (kSoftEdge / 2 inside):
+// smoothstep of the signed distance `t`, positive inside.
+double inside(double t) {
+  const double x = std::clamp(t / kSoftEdge + 0.5, 0.0, 1.0);
+  return x * x * (3 - 2 * x);
+}
+
 void builtinRadiance(const std::string& kind, Dir d, float rgb[3]) {
   if (kind == "uniform") {
     rgb[0] = rgb[1] = rgb[2] = 1.0f;
@@ -45,9 +54,14 @@ void builtinRadiance(const std::string& kind, Dir d, float rgb[3]) {
     return;
   }
   // Studio: dim walls, a large overhead softbox in front, two vertical strips, a darker floor.
+  // Each light's edges ramp over kSoftEdge in direction components (about 2.5 texels of the
+  // 512x256 map): a hard edge steps from texel to texel, and mirror-like surfaces show the steps.
   double v = d.y >= 0 ? 0.06 : 0.03;
-  if (d.y > 0.55 && d.z > 0.1 && std::fabs(d.x) < 0.45) v = 6.0;
-  if (std::fabs(d.y) < 0.5 && std::fabs(std::fabs(d.x) - 0.85) < 0.08 && d.z < 0.2) v = 3.0;
+  const double softbox = inside(d.y - 0.55) * inside(d.z - 0.1) * inside(0.45 - std::fabs(d.x));
+  v += (6.0 - v) * softbox;
+  const double strip =
+      inside(0.5 - std::fabs(d.y)) * inside(0.08 - std::fabs(std::fabs(d.x) - 0.85)) * inside(0.2 - d.z);
+  v += (3.0 - v) * strip;
   for (int c = 0; c < 3; ++c) rgb[c] = float(v);
 }
 }  // namespace

@@ -9,20 +9,29 @@
 #include <fmt/format.h>
 
 #include "brdfcl/error.hpp"
+#include "io/option_style.hpp"
 
 namespace brdfcl {
 
 IblMode parseIblMode(const std::string& s) {
   if (s == "split-sum") return IblMode::SplitSum;
   if (s == "exact") return IblMode::Exact;
-  throw Error(fmt::format("--ibl '{}' is not an image-based light mode; use split-sum or exact", s));
+  throw Error(fmt::format("{} is not an image-based light mode; use split-sum or exact",
+                          optionWithValue("--ibl", "'" + s + "'")));
 }
 
 const char* toString(IblMode m) { return m == IblMode::Exact ? "exact" : "split-sum"; }
 
 void checkIblSamples(int samples) {
   if (samples < 1 || samples > kMaxIblSamples)
-    throw Error(fmt::format("--ibl-samples {} is out of range; use 1 to {}", samples, kMaxIblSamples));
+    throw Error(fmt::format("{} is out of range; use 1 to {}", optionWithValue("--ibl-samples", std::to_string(samples)),
+                            kMaxIblSamples));
+}
+
+void checkIblSamplesApply(IblMode mode, bool samplesGiven) {
+  if (mode != IblMode::Exact && samplesGiven)
+    throw Error(fmt::format("{} applies to {}; add {}", optionName("--ibl-samples"), optionWithValue("--ibl", "exact", true),
+                            optionWithValue("--ibl", "exact", true)));
 }
 
 std::string exactIblSummary(const ShadeStats& s) {

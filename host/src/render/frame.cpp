@@ -12,6 +12,7 @@
 #include <fmt/format.h>
 
 #include "brdfcl/error.hpp"
+#include "io/option_style.hpp"
 
 namespace brdfcl::gltf {
 
@@ -39,8 +40,8 @@ void applyLightsOption(Scene& scene, const std::string& lights, bool environment
                   : ::access(lights.c_str(), R_OK) != 0 ? errno
                                                         : 0;
   if (err != 0)
-    throw Error(fmt::format("--lights '{}': cannot read: {}; give gltf, none, or a scene .json file", lights,
-                            std::strerror(err)));
+    throw Error(fmt::format("{}: cannot read: {}; give gltf, none, or a scene .json file",
+                            optionWithValue("--lights", "'" + lights + "'"), std::strerror(err)));
   const Scene file = readScene(lights, allowOutside);
   scene.lights = file.lights;
   if (!environmentGiven) scene.environment = file.environment;
@@ -57,7 +58,7 @@ Scene frameLighting(const Asset& asset, const View& view, const std::string& lig
 }
 
 std::vector<std::array<float, 2>> subpixelOffsets(int spp) {
-  if (spp < 1) throw Error(fmt::format("--spp {} must be at least 1", spp));
+  if (spp < 1) throw Error(fmt::format("{} must be at least 1", optionWithValue("--spp", std::to_string(spp))));
   if (spp == 1) return {{0.5f, 0.5f}};
   const int columns = int(std::ceil(std::sqrt(double(spp))));
   const int rows = (spp + columns - 1) / columns;

@@ -10,6 +10,7 @@
 #include "brdfcl/frame_budget.hpp"
 #include "brdfcl/gltf_frame.hpp"
 #include "io/input_limits.hpp"
+#include "io/option_style.hpp"
 
 namespace brdfcl {
 
@@ -19,12 +20,14 @@ Scene builtinScene(const std::string& name) {
 }
 
 void checkRenderSpp(int spp) {
-  if (spp < 1 || spp > 1024) throw Error(fmt::format("--spp {} is out of range; use 1 to 1024", spp));
+  if (spp < 1 || spp > 1024)
+    throw Error(fmt::format("{} is out of range; use 1 to 1024", optionWithValue("--spp", std::to_string(spp))));
 }
 
 void checkRenderSize(int width, int height) {
   if (width < 1 || height < 1 || width > 16384 || height > 16384)
-    throw Error(fmt::format("--size '{}x{}' is not WIDTHxHEIGHT with sides 1 to 16384, e.g. 768x768", width, height));
+    throw Error(fmt::format("{} is not WIDTHxHEIGHT with sides 1 to 16384, e.g. 768x768",
+                            optionWithValue("--size", fmt::format("'{}x{}'", width, height))));
 }
 
 FramedAsset loadFramedAsset(const std::string& path, const gltf::LoadOptions& options, const std::string& camera,
@@ -38,8 +41,10 @@ FramedAsset loadFramedAsset(const std::string& path, const gltf::LoadOptions& op
 
 void checkExactIbl(const ShadeOptions& shade, const EvalOptions& model, const EvalOptions& against) {
   if (shade.ibl == IblMode::Exact && (model.profile != Profile::Spec || against.profile != Profile::Spec))
-    throw Error("--ibl exact integrates the spec's BRDF only; an engine profile reproduces its engine's own "
-                "image-based light, so use --ibl split-sum with --profile and --diff-against");
+    throw Error(fmt::format("{} integrates the spec's BRDF only; an engine profile reproduces its engine's own "
+                            "image-based light, so use {} with {}",
+                            optionWithValue("--ibl", "exact", true), optionWithValue("--ibl", "split-sum", true),
+                            optionStyle() == OptionStyle::Cli ? "--profile and --diff-against" : "profile="));
 }
 
 PreparedRender prepareRender(const RenderJob& job, FrameJob kind) {
@@ -66,12 +71,16 @@ PreparedRender prepareRender(const RenderJob& job, FrameJob kind) {
     p.width = p.framed->width;
     p.height = p.framed->height;
   } else {
-    if (!job.camera.empty()) throw Error("--camera applies to glTF assets; add --gltf FILE");
-    if (job.gltfScene != -1) throw Error("--gltf-scene applies to glTF assets; add --gltf FILE");
-    if (!job.variant.empty()) throw Error("--variant applies to glTF assets; add --gltf FILE");
-    if (job.strict) throw Error("--strict applies to glTF assets; add --gltf FILE");
+    const auto gltfOnly = [](const char* option) {
+      return Error(optionName(option) + " applies to glTF assets; add " + optionWithValue("--gltf", "FILE"));
+    };
+    if (!job.camera.empty()) throw gltfOnly("--camera");
+    if (job.gltfScene != -1) throw gltfOnly("--gltf-scene");
+    if (!job.variant.empty()) throw gltfOnly("--variant");
+    if (job.strict) throw gltfOnly("--strict");
     if (job.sppGiven)
-      throw Error("--spp applies to glTF assets (the spheres are shaded at pixel centres); add --gltf FILE");
+      throw Error(optionName("--spp") + " applies to glTF assets (the spheres are shaded at pixel centres); add " +
+                  optionWithValue("--gltf", "FILE"));
     p.width = sizeGiven ? job.width : 768;
     p.height = sizeGiven ? job.height : 768;
     p.scene = builtinScene(job.scene);

@@ -16,6 +16,7 @@
 #include "brdfcl/frame_budget.hpp"
 #include "render/aniso_dfg.hpp"
 #include "brdfcl/render.hpp"
+#include "io/option_style.hpp"
 #include "kernels/common/shading_layout.h"
 #include "model/pack.hpp"
 #include "render/camera.hpp"
@@ -188,9 +189,11 @@ Image Shader::shade(const GBuffer& g, const ShadeOptions& options, ShadeStats* s
   const bool exact = options.ibl == IblMode::Exact;
   if (exact) checkIblSamples(options.iblSamples);
   if (exact && s.options.profile != Profile::Spec)
-    throw Error(fmt::format("--ibl exact integrates the spec's BRDF only; --profile {} reproduces its engine's own "
-                            "image-based light, so use --ibl split-sum with it",
-                            toString(s.options.profile)));
+    throw Error(fmt::format("{} integrates the spec's BRDF only; {} reproduces its engine's own "
+                            "image-based light, so use {} with it",
+                            optionWithValue("--ibl", "exact", true),
+                            optionWithValue("--profile", toString(s.options.profile), true),
+                            optionWithValue("--ibl", "split-sum", true)));
   auto& planes = s.planes;
   gbufferPlanes(g, planes);
   Image img;
@@ -306,10 +309,12 @@ Image Shader::shade(const GBuffer& g, const ShadeOptions& options, ShadeStats* s
       whole = s.planesOnDevice.second;
     } else {
       if (planes.size() * 4 > s.rt.info().maxAlloc)
-        throw Error(fmt::format("--ibl exact: a {}x{} G-buffer needs a {:.1f} GiB device buffer, but '{}' allows {:.1f} GiB; "
-                                "use a smaller --size or --ibl split-sum",
-                                g.width, g.height, double(planes.size() * 4) / (1u << 30), s.rt.info().name,
-                                double(s.rt.info().maxAlloc) / (1u << 30)));
+        throw Error(fmt::format("{}: a {}x{} G-buffer needs a {:.1f} GiB device buffer, but '{}' allows {:.1f} GiB; "
+                                "use a smaller {} or {}",
+                                optionWithValue("--ibl", "exact", true), g.width, g.height,
+                                double(planes.size() * 4) / (1u << 30), s.rt.info().name,
+                                double(s.rt.info().maxAlloc) / (1u << 30), optionName("--size"),
+                                optionWithValue("--ibl", "split-sum", true)));
       try {
         whole = readOnly(s.rt.context(), planes);
       } catch (const cl::Error&) {

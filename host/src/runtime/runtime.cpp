@@ -11,6 +11,7 @@
 
 #include "brdfcl/error.hpp"
 #include "io/disk_cache.hpp"
+#include "io/option_style.hpp"
 #include "runtime/pocl_cache_dir.hpp"
 
 namespace brdfcl {
@@ -49,6 +50,9 @@ const char* clErrorName(int code) {
 }
 
 namespace {
+
+// Where a caller lists the devices.
+const char* devicesHint() { return optionStyle() == OptionStyle::Python ? "brdfcl.devices()" : "'brdfcl devices'"; }
 
 constexpr const char* kNoPlatform = "no OpenCL platform found; install pocl-opencl-icd (make deps)";
 
@@ -179,7 +183,7 @@ Runtime::Runtime(const std::string& selectorArg) {
   std::string selector = selectorArg;
   // The message names where the selector came from: a stale BRDFCL_DEVICE in a shell profile
   // is otherwise hard to spot.
-  std::string source = "--device";
+  std::string source = optionName("--device");
   if (selector.empty()) {
     if (const char* env = std::getenv("BRDFCL_DEVICE")) {
       selector = env;
@@ -195,14 +199,15 @@ Runtime::Runtime(const std::string& selectorArg) {
       // Digits only, so the one failure mode of stoull is overflow: report it as out of range.
       chosen = selector.size() > 9 ? devices.size() : std::size_t(std::stoull(selector));
       if (chosen >= devices.size())
-        throw Error(fmt::format("{} {}: device index out of range: {} device(s) found; see 'brdfcl devices'", source,
-                                selector, devices.size()));
+        throw Error(fmt::format("{}{}{}: device index out of range: {} device(s) found; see {}", source,
+                                source.back() == '=' ? "" : " ", selector, devices.size(), devicesHint()));
     } else {
       for (std::size_t i = 0; i < devices.size() && chosen == devices.size(); ++i) {
         if (describe(i, devices[i].first, devices[i].second).name.find(selector) != std::string::npos) chosen = i;
       }
       if (chosen == devices.size())
-        throw Error(fmt::format("{} '{}': no OpenCL device matches; see 'brdfcl devices'", source, selector));
+        throw Error(fmt::format("{}{}'{}': no OpenCL device matches; see {}", source, source.back() == '=' ? "" : " ",
+                                selector, devicesHint()));
     }
     device_ = devices[chosen].first;
     info_ = describe(chosen, device_, devices[chosen].second);
