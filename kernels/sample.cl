@@ -18,9 +18,15 @@ enum { LOBE_DIFFUSE, LOBE_SPECULAR, LOBE_SHEEN, LOBE_COAT, LOBE_COUNT };
 static inline float luminance3(float r, float g, float b) { return 0.2126f * r + 0.7152f * g + 0.0722f * b; }
 
 /* Lobe probabilities at V. Under --lobe one lobe takes all. Otherwise each lobe's estimated
-   albedo (the Fresnel-weighted diffuse, Schlick's specular reflectance, the sheen's E table, the
-   coat's Fresnel, each under the layers above it), plus a floor of 0.01 for every lobe the
-   material has, so that every direction where f > 0 stays reachable whatever the estimate. */
+   albedo W_t (the Fresnel-weighted diffuse, Schlick's specular reflectance, the sheen's E table,
+   the coat's Fresnel, each under the layers above it) is split by K_t, the share of its sampler's
+   directions that land above the horizon at normal incidence: W_t K_t goes to the lobe's own
+   sampler and W_t (1 - K_t) to the cosine hemisphere, which serves rough lobes better than a
+   sampler that loses half its directions (GGX at alpha = 1) or nearly all (Charlie at small
+   alpha). The cosine hemisphere keeps a floor of 0.01, so every direction where f > 0 stays
+   reachable whatever the estimates. docs/sampling.md gives the K_t. */
+static inline int sheen_ashikhmin(const material_lanes m) { return SAMPLE_ASHIKHMIN && m.draft < 0.5f; }
+
 static inline void lobe_probabilities(const material_lanes m, float NdotV, __global const float* albedo_e,
                                       int albedo_size, float p[LOBE_COUNT]) {
   for (int t = 0; t < LOBE_COUNT; ++t) p[t] = 0.0f;
@@ -37,17 +43,33 @@ static inline void lobe_probabilities(const material_lanes m, float NdotV, __glo
   float e_sheen = 0.0f;
   if (has_sheen && albedo_size > 2)
     e_sheen = E_SheenAlbedo(albedo_e, albedo_size, E_SheenAlbedoRow(albedo_size, sqrt(m.sheen_alpha)), nv);
-  float below = (1.0f - coatF) * (1.0f - m.sheen_max * e_sheen);
+  /* E may exceed 1 / sheen_max (the fitted sheen visibility is not energy-conserving at grazing
+     views and small roughness): what the sheen leaves below is then taken as nothing. */
+  float below = (1.0f - coatF) * max(1.0f - m.sheen_max * e_sheen, 0.0f);
   float spec_f = (1.0f - m.metallic) * (0.04f + 0.96f * fw) +
                  m.metallic * luminance3(m.base_r + (1.0f - m.base_r) * fw, m.base_g + (1.0f - m.base_g) * fw,
                                          m.base_b + (1.0f - m.base_b) * fw);
+  float W_diffuse = below * (1.0f - m.metallic) * 0.96f * (1.0f - fw) * luminance3(m.base_r, m.base_g, m.base_b);
+  float W_spec = below * spec_f;
+  float W_sheen = has_sheen ? (1.0f - coatF) * sheen_lum * e_sheen : 0.0f;
+  float W_coat = coatF;
+  /* GGX: tan^2(theta_h) < 1 with probability 1 / (1 + alpha^2). Charlie: sin^2 < 1/2 with
+     probability 2^-(k + 1). Ashikhmin: half its cosine part, and t = cot^2 > 1 in its Gaussian. */
+  float K_spec = 1.0f / (1.0f + m.alpha_t * m.alpha);
+  float K_coat = 1.0f / (1.0f + m.clearcoat_alpha * m.clearcoat_alpha);
+  float m2 = m.sheen_alpha * m.sheen_alpha, pc = 1.0f / (1.0f + 4.0f * m2);
+  float K_sheen = sheen_ashikhmin(m) ? 0.5f * pc + (1.0f - pc) * exp(-1.0f / m2)
+                                     : exp2(-(0.5f / m.sheen_alpha + 1.0f));
+  /* A sampler that loses directions is also broad (the loss grows with alpha): beside its losses it
+     gains little over the cosine hemisphere, so its share falls faster than K, as K^4. */
+  K_spec *= K_spec, K_spec *= K_spec;
+  K_coat *= K_coat, K_coat *= K_coat;
+  K_sheen *= K_sheen, K_sheen *= K_sheen;
   float w[LOBE_COUNT];
-  w[LOBE_DIFFUSE] = m.metallic < 1.0f ? below * (1.0f - m.metallic) * 0.96f * (1.0f - fw) *
-                                             luminance3(m.base_r, m.base_g, m.base_b) + 0.01f
-                                       : 0.0f;
-  w[LOBE_SPECULAR] = below * spec_f + 0.01f;
-  w[LOBE_SHEEN] = has_sheen ? (1.0f - coatF) * sheen_lum * e_sheen + 0.01f : 0.0f;
-  w[LOBE_COAT] = coatF > 0.0f ? coatF + 0.01f : 0.0f;
+  w[LOBE_SPECULAR] = W_spec * K_spec;
+  w[LOBE_SHEEN] = W_sheen * K_sheen;
+  w[LOBE_COAT] = W_coat * K_coat;
+  w[LOBE_DIFFUSE] = W_diffuse + W_spec * (1.0f - K_spec) + W_sheen * (1.0f - K_sheen) + W_coat * (1.0f - K_coat) + 0.01f;
   float total = w[0] + w[1] + w[2] + w[3];
   for (int t = 0; t < LOBE_COUNT; ++t) p[t] = w[t] / total;
 }
@@ -61,8 +83,6 @@ static inline vec3w from_aniso(const material_lanes m, vec3w v) {
   vec3w o = {v.x * m.aniso_cos - v.y * m.aniso_sin, v.x * m.aniso_sin + v.y * m.aniso_cos, v.z};
   return o;
 }
-
-static inline int sheen_ashikhmin(const material_lanes m) { return SAMPLE_ASHIKHMIN && m.draft < 0.5f; }
 
 /* Each lobe's pdf of L (solid angle), L and V unit vectors in the shading frame. */
 static inline float lobe_pdf(int t, const material_lanes m, vec3w L, vec3w V) {
@@ -143,7 +163,8 @@ __kernel void sample_rows(__global const float* restrict V, __global const uint*
   for (int c = 0; c < 7; ++c) out[7 * i + c] = out7[c];
 }
 
-/* The mixture's pdf (as sample_rows draws) of rows of L and V (unit vectors): 0 below the horizon. */
+/* The mixture's pdf (as sample_rows draws) of rows of L (unit vectors, as sample_rows writes them)
+   and V (normalized here as sample_rows does): 0 below the horizon. */
 __kernel void pdf_rows(__global const float* restrict L, __global const float* restrict V,
                        __global const uint* restrict index, uint count,
                        __global const brdfcl_material* restrict materials, __global const float* restrict albedo_e,
@@ -151,7 +172,7 @@ __kernel void pdf_rows(__global const float* restrict L, __global const float* r
   size_t i = get_global_id(0);
   if (i >= count) return;
   material_lanes m = material_of(materials, index, i);
-  vec3w l = vec3w_normalize(load3(L, i)), v = vec3w_normalize(load3(V, i));
+  vec3w l = load3(L, i), v = vec3w_normalize(load3(V, i));
   float p[LOBE_COUNT];
   lobe_probabilities(m, v.z, albedo_e, albedo_size, p);
   out[i] = v.z > 0.0f && l.z > 0.0f ? mixture_pdf(p, m, l, v) : 0.0f;

@@ -83,16 +83,26 @@ std::array<double, kLobeCount> lobeProbabilities(const brdfcl::MaterialParams& m
   const double e = sheenLum > 0.0 ? sheenAlbedo(nv, std::sqrt(samplingAlphas(m).sheen), o.sheenDistribution,
                                                 o.sheenVisibility)
                                   : 0.0;
-  const double below = (1.0 - coatF) * (1.0 - sheenMax * e);
+  const double below = (1.0 - coatF) * std::max(1.0 - sheenMax * e, 0.0);
   const auto& b = m.baseColor;
   const double met = m.metallic;
   const double specF = (1.0 - met) * (0.04 + 0.96 * fw) +
                        met * luminance(b[0] + (1 - b[0]) * fw, b[1] + (1 - b[1]) * fw, b[2] + (1 - b[2]) * fw);
+  const double Wd = below * (1.0 - met) * 0.96 * (1.0 - fw) * luminance(b[0], b[1], b[2]);
+  const double Ws = below * specF, Wsh = sheenLum > 0.0 ? (1.0 - coatF) * sheenLum * e : 0.0, Wc = coatF;
+  // The shares of each sampler's directions above the horizon at normal incidence (docs/sampling.md).
+  const SamplingAlphas a = samplingAlphas(m);
+  const double Ks = 1.0 / (1.0 + a.at * a.ab), Kc = 1.0 / (1.0 + a.coat * a.coat);
+  const double m2 = a.sheen * a.sheen, pc = 1.0 / (1.0 + 4.0 * m2);
+  const double Ksh = o.sheenDistribution == brdfcl::SheenDistribution::Ashikhmin
+                         ? 0.5 * pc + (1.0 - pc) * std::exp(-1.0 / m2)
+                         : std::pow(2.0, -(0.5 / a.sheen + 1.0));
+  const double Ks4 = std::pow(Ks, 4.0), Kc4 = std::pow(Kc, 4.0), Ksh4 = std::pow(Ksh, 4.0);
   double w[kLobeCount];
-  w[kLobeDiffuse] = met < 1.0 ? below * (1.0 - met) * 0.96 * (1.0 - fw) * luminance(b[0], b[1], b[2]) + 0.01 : 0.0;
-  w[kLobeSpecular] = below * specF + 0.01;
-  w[kLobeSheen] = sheenLum > 0.0 ? (1.0 - coatF) * sheenLum * e + 0.01 : 0.0;
-  w[kLobeClearcoat] = coatF > 0.0 ? coatF + 0.01 : 0.0;
+  w[kLobeSpecular] = Ws * Ks4;
+  w[kLobeSheen] = Wsh * Ksh4;
+  w[kLobeClearcoat] = Wc * Kc4;
+  w[kLobeDiffuse] = Wd + Ws * (1.0 - Ks4) + Wsh * (1.0 - Ksh4) + Wc * (1.0 - Kc4) + 0.01;
   const double total = w[0] + w[1] + w[2] + w[3];
   for (int t = 0; t < kLobeCount; ++t) p[t] = w[t] / total;
   return p;

@@ -33,7 +33,8 @@ double pdfSheen(Vec3 L, Vec3 V, double alpha, brdfcl::SheenDistribution d);
 double sheenFacingMass(Vec3 V, double alpha, brdfcl::SheenDistribution d);
 
 // The mixture's lobe probabilities at V for the options (one lobe alone unless options.lobe is
-// All): each present lobe's estimated albedo plus 0.01, normalized. Ratified sheen only.
+// All): each lobe's estimated albedo, split between its sampler and the cosine hemisphere by the
+// share its sampler keeps at normal incidence, the cosine's plus 0.01, normalized. Ratified sheen only.
 std::array<double, kLobeCount> lobeProbabilities(const brdfcl::MaterialParams& m, const brdfcl::EvalOptions& o, Vec3 V);
 // Lobe t's pdf of L on the whole sphere (as above) for material m.
 double lobePdf(int t, const brdfcl::MaterialParams& m, const brdfcl::EvalOptions& o, Vec3 L, Vec3 V);
