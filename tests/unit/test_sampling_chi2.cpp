@@ -21,7 +21,7 @@ namespace brdfcl::test {
 namespace {
 
 constexpr int kCosBins = 10, kPhiBins = 20, kCells = kCosBins * kPhiBins + 1;  // + "no direction"
-constexpr std::size_t kSamples = 300000;
+constexpr std::size_t kSamples = 200000;
 constexpr double kPi = ref::kPi;
 
 ref::Vec3 viewAt(double thetaDeg, double phi) {

@@ -174,7 +174,7 @@ TEST(SamplingWeights, FurnaceMeanWeightIsTheDirectionalAlbedo) {
 
 // The mixture's variance of w (luminance) against the cosine hemisphere's for every gallery
 // material: below it at a grazing view, within a bound at normal incidence.
-TEST(SamplingWeights, MixtureBeatsTheCosineHemisphereOnTheGallery) {
+TEST(SamplingWeights, MixtureAgainstTheCosineHemisphereOnTheGallery) {
   const std::size_t n = 20000;
   Evaluator ev(runtime(), EvalOptions{});
   auto lum = [](const float* c) { return 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]; };
