@@ -178,6 +178,17 @@ TEST_F(SamplingCli, MalformedViewFiles) {
   five.resize(117, ' ');
   five += '\n';
   expect("five.npy", npy + five + std::string(20, '\0'), "shape (N, 5): expected 7, 6, 4 or 3 columns");
+  expect("eight.csv", "material,Vx,Vy,Vz,u1,u2,u3,x\n0,0,0,1,0.5,0.5,0.5,1\n",
+         "header: more than 7 columns; expected material,Vx,Vy,Vz,u1,u2,u3");
+  expect("cut.npy", npy + "\xff\xff{'descr'", "truncated NPY header");
+  auto headerOf = [&](std::string dict) {
+    dict.resize(117, ' ');
+    return npy + dict + '\n';
+  };
+  expect("fortran.npy", headerOf("{'descr': '<f4', 'fortran_order': True, 'shape': (1, 3), }") + std::string(12, '\0'),
+         "must be in C order");
+  expect("flat.npy", headerOf("{'descr': '<f4', 'fortran_order': False, 'shape': (3,), }") + std::string(12, '\0'),
+         "shape must be (N, 7), (N, 6), (N, 4) or (N, 3)");
   // A good (N, 3) NPY of V alone samples.
   std::string good = npy + f4;
   const float v[6] = {0, 0, 1, 0.5f, 0, 0.5f};
