@@ -7,7 +7,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <functional>
 #include <string>
 #include <vector>
@@ -110,9 +109,6 @@ Fit chiSquare(const std::vector<double>& observed, const std::vector<double>& ex
     fit.chi2 += (poolObs - poolExp) * (poolObs - poolExp) / poolExp;
     ++cells;
   } else if (poolObs > 20.0 + 10.0 * poolExp) {
-    if (std::getenv("BRDFCL_CHI2_DEBUG"))
-      for (std::size_t k = 0; k < expected.size(); ++k)
-        if (expected[k] < 5.0 && observed[k] > 0) std::printf("    cell %zu: observed %g expected %g\n", k, observed[k], expected[k]);
     fit.chi2 = INFINITY;  // many directions where the pdf says almost none may land
   }
   fit.dof = std::max(cells - 1, 1);
@@ -215,8 +211,6 @@ std::vector<double> expectedCounts(const Case& c, ref::Vec3 V, double scale = 1.
     kept += bins[k];
   }
   e[kCells - 1] = std::max(0.0, double(n) * (1.0 - scale * kept));
-  if (std::getenv("BRDFCL_CHI2_DEBUG"))
-    std::printf("    kept %.6f p %.4f %.4f %.4f %.4f\n", kept, p[0], p[1], p[2], p[3]);
   return e;
 }
 
