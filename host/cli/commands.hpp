@@ -23,6 +23,8 @@ void addLutCommand(CLI::App& app);
 void addDiffCommand(CLI::App& app);
 void addCompareCommand(CLI::App& app);
 void addCacheCommand(CLI::App& app);
+void addSampleCommand(CLI::App& app);
+void addPdfCommand(CLI::App& app);
 
 // "brdfcl: warning: <text>" on stderr: the one form every command warns in.
 void printWarning(const std::string& text);

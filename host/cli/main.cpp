@@ -93,6 +93,8 @@ int main(int argc, char** argv) {
   app.add_flag("--version", "print the version, the git commit and the OpenCL devices found");
   brdfcl::cli::addDevicesCommand(app);
   brdfcl::cli::addEvalCommand(app);
+  brdfcl::cli::addSampleCommand(app);
+  brdfcl::cli::addPdfCommand(app);
   brdfcl::cli::addAlbedoCommand(app);
   brdfcl::cli::addGbufferCommand(app);
   brdfcl::cli::addShadeCommand(app);

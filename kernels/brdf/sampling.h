@@ -1,6 +1,8 @@
 /* Importance sampling of the layered BRDF's lobes, over width-generic lanes: GGX visible normals
-   (Heitz 2018, "Sampling the GGX Distribution of Visible Normals", JCGT 7(4)), anisotropic or not,
-   and the cosine and uniform hemispheres. Each sampler has its pdf in solid angle of L beside it. */
+   (Heitz 2018, "Sampling the GGX Distribution of Visible Normals", JCGT 7(4); Dupuy & Benyoub 2023,
+   "Sampling Visible GGX Normals with Spherical Caps"), anisotropic or not, the sheen distributions
+   (Charlie, Ashikhmin) exactly, and the cosine and uniform hemispheres. Each sampler has its pdf in
+   solid angle of L beside it; docs/sampling.md derives them. */
 #ifndef BRDFCL_SAMPLING_H
 #define BRDFCL_SAMPLING_H
 
@@ -77,5 +79,64 @@ BRDF_FN vec3w SampleUniformHemisphere(realw u1, realw u2) {
   return L;
 }
 BRDF_FN realw PdfUniformHemisphere(vec3w L) { return select((realw)(0.0f), (realw)(0.5f * M_1_PI_F), L.z > 0.0f); }
+
+/* Dupuy & Benyoub 2023, listing 3: the same visible-normal distribution as SampleGGXVNDF, drawn as
+   a point on the spherical cap of the unit sphere cut by the plane z = -Vh.z (uniform in z and
+   phi), offset by Vh. No orthonormal basis, so fewer operations and no pole to special-case. */
+BRDF_FN vec3w SampleGGXVNDFCaps(vec3w Ve, realw ax, realw ay, realw u1, realw u2) {
+  vec3w s = {ax * Ve.x, ay * Ve.y, Ve.z};
+  vec3w Vh = vec3w_normalize(s);
+  realw phi = 2.0f * M_PI_F * u1;
+  realw z = (1.0f - u2) * (1.0f + Vh.z) - Vh.z;
+  realw st = sqrt(clamp(1.0f - z * z, (realw)(0.0f), (realw)(1.0f)));
+  vec3w Nh = {st * cos(phi) + Vh.x, st * sin(phi) + Vh.y, z + Vh.z};
+  vec3w Ne = {ax * Nh.x, ay * Nh.y, max(Nh.z, (realw)(0.0f))};
+  return vec3w_normalize(Ne);
+}
+
+/* A microfacet normal at polar cosine ct (sine st) and azimuth 2 pi u. */
+BRDF_FN vec3w normal_at(realw ct, realw st, realw u) {
+  realw phi = 2.0f * M_PI_F * u;
+  vec3w H = {st * cos(phi), st * sin(phi), ct};
+  return H;
+}
+
+/* The Charlie sheen: H with density D(H) cos(theta_h) over the hemisphere, exactly. With
+   s = sin^2(theta_h) and k = 1 / (2 alpha), D cos dw_h = (1 + k) s^k ds dphi / (2 pi), whose CDF in s
+   is s^(k + 1): s = u1^(1 / (k + 1)). cos^2 = 1 - s is formed as -expm1(log(u1) / (k + 1)),
+   which keeps its digits when s is within an ulp of 1 (small alpha). */
+BRDF_FN vec3w SampleCharlieNormal(realw alpha, realw u1, realw u2) {
+  realw e = 2.0f * alpha / (1.0f + 2.0f * alpha);
+  realw lu = log(max(u1, (realw)(1.0e-38f)));
+  realw c2 = clamp(-expm1(lu * e), (realw)(0.0f), (realw)(1.0f));
+  realw s2 = clamp(exp(lu * e), (realw)(0.0f), (realw)(1.0f));
+  return normal_at(sqrt(c2), sqrt(s2), u2);
+}
+
+/* The Ashikhmin velvet D cos(theta_h) = [cos + 4 exp(-cot^2 / m2) cos / sin^4] / (pi (1 + 4 m2)) is a
+   mixture: its constant part is the cosine density with weight 1 / (1 + 4 m2), and its inverted
+   Gaussian has t = cot^2(theta_h) exponentially distributed with mean m2, weight 4 m2 / (1 + 4 m2).
+   u1 picks the part and is rescaled within it. */
+BRDF_FN vec3w SampleAshikhminNormal(realw alpha, realw u1, realw u2) {
+  realw m2 = alpha * alpha;
+  realw pc = 1.0f / (1.0f + 4.0f * m2);
+  intw cosine = u1 < pc;
+  realw v = select(clamp((u1 - pc) / (1.0f - pc), (realw)(0.0f), (realw)(1.0f)), u1 / pc, cosine);
+  /* Cosine part: cos^2 = 1 - v (Malley). Gaussian part: t = -m2 log(1 - v), cos^2 = t / (1 + t). */
+  realw t = -m2 * log1p(-min(v, (realw)(0.99999994f)));
+  realw c2 = select(t / (1.0f + t), 1.0f - v, cosine);
+  realw s2 = select(1.0f / (1.0f + t), v, cosine);
+  return normal_at(sqrt(max(c2, (realw)(0.0f))), sqrt(max(s2, (realw)(0.0f))), u2);
+}
+
+/* pdf of L = reflect(V, H) for H drawn with density D(H) cos(theta_h): D cos(theta_h) / (4 V.H),
+   the reflection's Jacobian 1 / (4 V.H) (Walter et al. 2007, eq. 14). D is homogeneous of degree 0
+   in h = L + V, so the unnormalized h serves: cos = h.z / |h|, V.H = V.h / |h|. 0 unless L.z > 0. */
+BRDF_FN realw PdfNormalReflect(realw D, vec3w L, vec3w V) {
+  vec3w h = {L.x + V.x, L.y + V.y, L.z + V.z};
+  realw vh = dot3w(V, h);
+  realw pdf = D * h.z / (4.0f * max(vh, (realw)(1.0e-30f)));
+  return keep_or_zero(pdf, (L.z > 0.0f) & (h.z > 0.0f) & (vh > 0.0f));
+}
 
 #endif

@@ -569,4 +569,51 @@ NB_MODULE(_core, m) {
   m.def("read_scene", &brdfcl::readScene, "path"_a, "allow_outside"_a = false);
   m.def("parse_scene", &brdfcl::parseScene, "json"_a, "name"_a, "base_dir"_a, "allow_outside"_a = false);
   m.def("spheres_scene", &brdfcl::spheresScene);
+
+  // Importance sampling (docs/sampling.md): rows of V (and u) in, (rows, 7) Lx Ly Lz pdf wr wg wb
+  // out; and the mixture's pdf of (L, V) rows. The Python side checks shapes and draws nothing.
+  using Rows3 = nb::ndarray<const float, nb::ndim<2>, nb::c_contig, nb::device::cpu>;
+  using Indices = nb::ndarray<const std::uint32_t, nb::ndim<1>, nb::c_contig, nb::device::cpu>;
+  m.def("sample",
+        [](Device& d, const Materials& mats, Rows3 V, nb::object index, Rows3 u, OutArray out,
+           const brdfcl::EvalOptions& o) {
+          const std::size_t n = V.shape(0);
+          if (V.shape(1) != 3 || u.shape(0) != n || u.shape(1) != 3 || out.size() != 7 * n)
+            throw Error("internal: sample arrays of the wrong shape", 3);
+          const std::uint32_t* idx = nullptr;
+          Indices held;
+          if (!index.is_none()) {
+            held = nb::cast<Indices>(index, false);
+            if (held.shape(0) != n) throw Error("internal: sample indices of the wrong length", 3);
+            idx = held.data();
+          }
+          nb::gil_scoped_release release;
+          d.evaluator(o).sample(mats.list, idx, V.data(), u.data(), n, out.data());
+        },
+        "device"_a, "materials"_a, "V"_a.noconvert(), "index"_a.none(), "u"_a.noconvert(), "out"_a.noconvert(),
+        "options"_a);
+  m.def("pdf",
+        [](Device& d, const Materials& mats, Rows3 L, Rows3 V, nb::object index, OutArray out,
+           const brdfcl::EvalOptions& o) {
+          const std::size_t n = V.shape(0);
+          if (L.shape(0) != n || L.shape(1) != 3 || V.shape(1) != 3 || out.size() != n)
+            throw Error("internal: pdf arrays of the wrong shape", 3);
+          brdfcl::Samples s;
+          s.L.assign(L.data(), L.data() + 3 * n);
+          s.V.assign(V.data(), V.data() + 3 * n);
+          if (!index.is_none()) {
+            const Indices held = nb::cast<Indices>(index, false);
+            if (held.shape(0) != n) throw Error("internal: pdf indices of the wrong length", 3);
+            s.material.assign(held.data(), held.data() + n);
+          }
+          nb::gil_scoped_release release;
+          d.evaluator(o).pdf(mats.list, s, out.data());
+        },
+        "device"_a, "materials"_a, "L"_a.noconvert(), "V"_a.noconvert(), "index"_a.none(), "out"_a.noconvert(),
+        "options"_a);
+  m.def("draw_uniforms", [](std::uint64_t seed, std::size_t rows) {
+    std::vector<float> u(3 * rows);
+    brdfcl::Evaluator::drawUniforms(seed, 0, rows, u.data());
+    return toNumpy(std::move(u), {rows, 3});
+  }, "seed"_a, "rows"_a);
 }

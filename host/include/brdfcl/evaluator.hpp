@@ -122,6 +122,29 @@ class Evaluator {
   // device's largest allocation. Larger batches are split into launches of this size.
   std::size_t launchLimit() const;
 
+  // ---- Importance sampling (docs/sampling.md) ----
+  // One direction L per row drawn from the material's lobes, as a path tracer's one-sample MIS
+  // draws it: a lobe chosen by u3 with probabilities from each lobe's estimated albedo at V (the
+  // options' lobe alone under --lobe), then L from that lobe's sampler with (u1, u2). Writes 7
+  // floats a row, Lx Ly Lz pdf wr wg wb: pdf is the mixture's density of L (solid angle) and
+  // w = f(L, V) N.L / pdf with f of the options' profile and lobe; all 0 where no direction
+  // above the horizon came out (or V.z <= 0). `view` holds 3 floats a row (normalized here),
+  // `material` one index a row (nullptr: material 0), `u` 3 floats a row in [0, 1).
+  // Throws brdfcl::Error naming the row: "row 7: Vz is not finite: inf",
+  // "row 7: material index 5 out of range (2 materials)", "row 7: u2 must be in [0, 1), got 1".
+  void sample(const std::vector<MaterialParams>& materials, const std::uint32_t* material, const float* view,
+              const float* u, std::size_t count, float* out);
+  std::vector<float> sample(const std::vector<MaterialParams>& materials, const std::vector<std::uint32_t>& material,
+                            const std::vector<float>& view, const std::vector<float>& u);
+  // The density sample() draws L with, per sample (L and V as evaluate() takes them); 0 where
+  // N.L <= 0 or N.V <= 0. Checks as evaluate().
+  void pdf(const std::vector<MaterialParams>& materials, const Samples& samples, float* pdf);
+  std::vector<float> pdf(const std::vector<MaterialParams>& materials, const Samples& samples);
+  // The counter-based uniforms of `brdfcl sample --count --seed`: u_j of global row r is
+  // SplitMix64's output number 3 r + j (from 0) of the stream seeded with `seed`, so any chunking
+  // or device draws the same numbers. Fills 3 floats a row for rows [firstRow, firstRow + rows).
+  static void drawUniforms(std::uint64_t seed, std::uint64_t firstRow, std::size_t rows, float* u);
+
  private:
   friend class SoaBatch;
   struct Batch;

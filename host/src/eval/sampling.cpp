@@ -1,0 +1,190 @@
+// Evaluator::sample / pdf: rows checked on the host, then handed to kernels/sample.cl (sample_rows,
+// pdf_rows) a launch at a time; and the counter-based uniforms of `brdfcl sample --count --seed`.
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "brdfcl/error.hpp"
+#include "brdfcl/evaluator.hpp"
+#include "eval/batch.hpp"
+#include "eval/splitmix64.hpp"
+#include "model/pack.hpp"
+
+namespace brdfcl {
+
+namespace {
+
+const char* finiteWord(float v) { return std::isnan(v) ? "nan" : v > 0 ? "inf" : "-inf"; }
+
+void checkDirection(const float* d, std::size_t row, const char* name) {
+  for (int k = 0; k < 3; ++k)
+    if (!std::isfinite(d[k]))
+      throw Error(fmt::format("row {}: {}{} is not finite: {}", row, name, "xyz"[k], finiteWord(d[k])));
+}
+
+void checkIndex(const std::uint32_t* material, std::size_t row, std::size_t count) {
+  if (material && material[row] >= count)
+    throw Error(fmt::format("row {}: material index {} out of range ({} materials)", row, material[row], count));
+}
+
+// What the sampling kernels read: the program for the batch's options and features, the packed
+// materials, f's tables and the sheen albedo table the lobe probabilities look up.
+struct SamplingBatch {
+  cl::Program program;
+  cl::Buffer materials, table, albedo;
+  int tableSize = 2, albedoSize = 2;
+};
+
+}  // namespace
+
+void Evaluator::drawUniforms(std::uint64_t seed, std::uint64_t firstRow, std::size_t rows, float* u) {
+  for (std::size_t i = 0; i < 3 * rows; ++i) {
+    detail::SplitMix64 g{seed + (3 * firstRow + i) * 0x9e3779b97f4a7c15ull};
+    u[i] = g.uniformFloat();
+  }
+}
+
+namespace {
+SamplingBatch makeSamplingBatch(Runtime& rt, const EvalOptions& options, const std::vector<MaterialParams>& materials,
+                                const std::vector<brdfcl_material>& packed, const std::vector<float>& table,
+                                int tableSize, const SheenAlbedoTable* albedo) {
+  SamplingBatch s;
+  s.tableSize = tableSize;
+  const std::vector<float> dummy(4, 0.0f);
+  const std::vector<float>& e = albedo ? albedo->values : dummy;
+  s.albedoSize = albedo ? int(albedo->width) : 2;
+  try {
+    s.program = rt.program("sample.cl", materialDefines(options, featuresOf(materials, options.profile)));
+    const auto& ctx = rt.context();
+    s.materials = cl::Buffer(ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, packed.size() * sizeof(brdfcl_material),
+                             const_cast<brdfcl_material*>(packed.data()));
+    s.table = cl::Buffer(ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, table.size() * 4, const_cast<float*>(table.data()));
+    s.albedo = cl::Buffer(ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, e.size() * 4, const_cast<float*>(e.data()));
+  } catch (const cl::Error&) {
+    rethrowOpenCL("preparing the samplers");
+  }
+  return s;
+}
+
+// A read-only device copy of n elements of T (a 1-element dummy for none).
+template <class T>
+cl::Buffer input(const cl::Context& ctx, const T* p, std::size_t n) {
+  static const T zero[1] = {};
+  return cl::Buffer(ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, std::max<std::size_t>(n, 1) * sizeof(T),
+                    const_cast<T*>(p ? p : zero));
+}
+}  // namespace
+
+void Evaluator::sample(const std::vector<MaterialParams>& materials, const std::uint32_t* material, const float* view,
+                       const float* u, std::size_t count, float* out) {
+  Batch b = prepare(materials);
+  for (std::size_t i = 0; i < count; ++i) {
+    checkDirection(view + 3 * i, i, "V");
+    checkIndex(material, i, materials.size());
+    for (int k = 0; k < 3; ++k)
+      if (!(u[3 * i + k] >= 0.0f && u[3 * i + k] < 1.0f))
+        throw Error(fmt::format("row {}: u{} must be in [0, 1), got {}", i, k + 1, u[3 * i + k]));
+  }
+  if (count == 0) return;
+  const FeatureSet features = featuresOf(materials, options_.profile);
+  const SamplingBatch s = makeSamplingBatch(rt_, options_, materials, b.packed, b.table, b.tableSize,
+                                            features.sheen || features.draft ? &sheenAlbedo() : nullptr);
+  const std::size_t chunk = std::max<std::size_t>(1, std::min(launchLimit(), std::size_t(rt_.info().maxAlloc) / 28));
+  try {
+    cl::Kernel kernel(s.program, "sample_rows");
+    auto& q = rt_.queue();
+    const auto& ctx = rt_.context();
+    for (std::size_t first = 0; first < count; first += chunk) {
+      const std::size_t n = std::min(chunk, count - first);
+      cl::Buffer V = input(ctx, view + 3 * first, 3 * n), U = input(ctx, u + 3 * first, 3 * n);
+      cl::Buffer index = input(ctx, material ? material + first : nullptr, material ? n : 0);
+      cl::Buffer result(ctx, CL_MEM_WRITE_ONLY, 28 * n);
+      int arg = 0;
+      kernel.setArg(arg++, V);
+      if (material)
+        kernel.setArg(arg++, index);
+      else
+        kernel.setArg(arg++, sizeof(cl_mem), nullptr);
+      kernel.setArg(arg++, U);
+      kernel.setArg(arg++, cl_uint(n));
+      kernel.setArg(arg++, s.materials);
+      kernel.setArg(arg++, s.table);
+      kernel.setArg(arg++, s.tableSize);
+      kernel.setArg(arg++, s.albedo);
+      kernel.setArg(arg++, s.albedoSize);
+      kernel.setArg(arg++, result);
+      q.enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(n), cl::NullRange);
+      q.enqueueReadBuffer(result, CL_TRUE, 0, 28 * n, out + 7 * first);
+    }
+  } catch (const cl::Error&) {
+    rethrowOpenCL("sampling directions");
+  }
+}
+
+std::vector<float> Evaluator::sample(const std::vector<MaterialParams>& materials,
+                                     const std::vector<std::uint32_t>& material, const std::vector<float>& view,
+                                     const std::vector<float>& u) {
+  const std::size_t n = view.size() / 3;
+  if (view.size() % 3 || u.size() != 3 * n || (!material.empty() && material.size() != n))
+    throw Error(fmt::format("internal: {} view floats, {} uniforms, {} indices", view.size(), u.size(), material.size()), 3);
+  std::vector<float> out(7 * n);
+  sample(materials, material.empty() ? nullptr : material.data(), view.data(), u.data(), n, out.data());
+  return out;
+}
+
+void Evaluator::pdf(const std::vector<MaterialParams>& materials, const Samples& samples, float* pdf) {
+  Batch b = prepare(materials);
+  const std::size_t count = samples.size();
+  const std::uint32_t* material = samples.material.empty() ? nullptr : samples.material.data();
+  if (material && samples.material.size() != count)
+    throw Error(fmt::format("internal: {} material indices for {} samples", samples.material.size(), count), 3);
+  for (std::size_t i = 0; i < count; ++i) {
+    checkDirection(samples.L.data() + 3 * i, i, "L");
+    checkDirection(samples.V.data() + 3 * i, i, "V");
+    checkIndex(material, i, materials.size());
+  }
+  if (count == 0) return;
+  const FeatureSet features = featuresOf(materials, options_.profile);
+  const SamplingBatch s = makeSamplingBatch(rt_, options_, materials, b.packed, b.table, b.tableSize,
+                                            features.sheen || features.draft ? &sheenAlbedo() : nullptr);
+  const std::size_t chunk = std::max<std::size_t>(1, std::min(launchLimit(), std::size_t(rt_.info().maxAlloc) / 12));
+  try {
+    cl::Kernel kernel(s.program, "pdf_rows");
+    auto& q = rt_.queue();
+    const auto& ctx = rt_.context();
+    for (std::size_t first = 0; first < count; first += chunk) {
+      const std::size_t n = std::min(chunk, count - first);
+      cl::Buffer L = input(ctx, samples.L.data() + 3 * first, 3 * n), V = input(ctx, samples.V.data() + 3 * first, 3 * n);
+      cl::Buffer index = input(ctx, material ? material + first : nullptr, material ? n : 0);
+      cl::Buffer result(ctx, CL_MEM_WRITE_ONLY, 4 * n);
+      int arg = 0;
+      kernel.setArg(arg++, L);
+      kernel.setArg(arg++, V);
+      if (material)
+        kernel.setArg(arg++, index);
+      else
+        kernel.setArg(arg++, sizeof(cl_mem), nullptr);
+      kernel.setArg(arg++, cl_uint(n));
+      kernel.setArg(arg++, s.materials);
+      kernel.setArg(arg++, s.albedo);
+      kernel.setArg(arg++, s.albedoSize);
+      kernel.setArg(arg++, result);
+      q.enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(n), cl::NullRange);
+      q.enqueueReadBuffer(result, CL_TRUE, 0, 4 * n, pdf + first);
+    }
+  } catch (const cl::Error&) {
+    rethrowOpenCL("evaluating sampling densities");
+  }
+}
+
+std::vector<float> Evaluator::pdf(const std::vector<MaterialParams>& materials, const Samples& samples) {
+  std::vector<float> out(samples.size());
+  pdf(materials, samples, out.data());
+  return out;
+}
+
+}  // namespace brdfcl
