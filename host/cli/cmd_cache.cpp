@@ -2,7 +2,7 @@
 // kind) or removes its entries. The listing and the removal live in the library (brdfcl/cache.hpp).
 #include <fmt/format.h>
 
-#include "brdfcl/cache.hpp"
+#include "host/src/io/cache.hpp"
 #include "brdfcl/error.hpp"
 #include "commands.hpp"
 

@@ -7,7 +7,7 @@
 
 #include <fmt/format.h>
 
-#include "brdfcl/compare.hpp"
+#include "host/src/parity/compare.hpp"
 #include "brdfcl/error.hpp"
 #include "brdfcl/io.hpp"
 #include "commands.hpp"

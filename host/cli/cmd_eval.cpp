@@ -8,7 +8,7 @@
 #include <memory>
 #include <string>
 
-#include "brdfcl/device_set.hpp"
+#include "host/src/devices/device_set.hpp"
 #include "brdfcl/error.hpp"
 #include "brdfcl/evaluator.hpp"
 #include "brdfcl/io.hpp"

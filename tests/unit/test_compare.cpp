@@ -18,7 +18,7 @@
 #include <stb/stb_image.h>
 
 #include "brdfcl/albedo.hpp"
-#include "brdfcl/compare.hpp"
+#include "host/src/parity/compare.hpp"
 #include "brdfcl/error.hpp"
 #include "brdfcl/evaluator.hpp"
 #include "process.hpp"

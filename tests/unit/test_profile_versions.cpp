@@ -11,7 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "brdfcl/material.hpp"
-#include "brdfcl/profile_version.hpp"
+#include "host/src/model/profile_version.hpp"
 #include "process.hpp"
 #include "support.hpp"
 

@@ -4,7 +4,7 @@
 
 #include <array>
 
-#include "brdfcl/plot.hpp"
+#include "plot/plot.hpp"
 
 namespace brdfcl::plot::detail {
 

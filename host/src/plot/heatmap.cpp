@@ -4,7 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "brdfcl/plot.hpp"
+#include "plot/plot.hpp"
 
 namespace brdfcl::plot {
 

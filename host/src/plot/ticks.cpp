@@ -6,7 +6,7 @@
 
 #include <fmt/format.h>
 
-#include "brdfcl/plot.hpp"
+#include "plot/plot.hpp"
 
 namespace brdfcl::plot {
 

@@ -10,7 +10,7 @@
 
 #include <fmt/format.h>
 
-#include "brdfcl/device_set.hpp"
+#include "devices/device_set.hpp"
 #include "brdfcl/error.hpp"
 #include "brdfcl/evaluator.hpp"
 #include "brdfcl/frame_budget.hpp"
@@ -21,6 +21,7 @@
 #include "render/camera.hpp"
 #include "render/exact_ibl.hpp"
 #include "render/prefilter.hpp"
+#include "runtime/opencl.hpp"
 
 namespace brdfcl {
 
@@ -146,13 +147,13 @@ Shader::Shader(Runtime& rt, const Scene& scene, EvalOptions options)
   try {
     const auto lights = packLights(scene);
     s.lightCount = int(scene.lights.size());
-    s.lights = cl::Buffer(rt.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, lights.size() * sizeof(brdfcl_light),
+    s.lights = cl::Buffer(rt.opencl().context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, lights.size() * sizeof(brdfcl_light),
                           const_cast<brdfcl_light*>(lights.data()));
     FeatureSet all;
     all.sheen = all.ratifiedSheen = all.clearcoat = all.anisotropy = true;
     EvalOptions o = options;
     o.lobe = Lobe::All;
-    s.program = rt.program("shade.cl", materialDefines(o, all));
+    s.program = rt.opencl().program("shade.cl", materialDefines(o, all));
   } catch (const cl::Error&) {
     rethrowOpenCL("preparing the shader");
   }
@@ -176,8 +177,8 @@ cl::Buffer anisotropicDfgFor(Runtime& rt, const GBuffer& g) {
   const bool needed = std::any_of(g.anisotropyStrength.begin(), g.anisotropyStrength.end(), [](float v) { return v > 0.0f; });
   std::lock_guard<std::mutex> lock(mutex);
   if (auto it = tables.find(&rt); it != tables.end()) return it->second;
-  if (!needed) return readOnly(rt.context(), std::vector<float>(2, 0.0f));
-  return tables.emplace(&rt, readOnly(rt.context(), cachedAnisotropicDfg(rt))).first->second;
+  if (!needed) return readOnly(rt.opencl().context(), std::vector<float>(2, 0.0f));
+  return tables.emplace(&rt, readOnly(rt.opencl().context(), cachedAnisotropicDfg(rt))).first->second;
 }
 }  // namespace
 
@@ -201,7 +202,7 @@ Image Shader::shade(const GBuffer& g, const ShadeOptions& options, ShadeStats* s
   // Rows [rowBegin, rowEnd) on one device's state, in bands, into `out`. Each pixel's value
   // depends on the pixel alone, so any split of the rows gives the same bytes.
   auto shadeRows = [&](State& st, int rowBegin, int rowEnd, bool report) {
-    const auto& ctx = st.rt.context();
+    const auto& ctx = st.rt.opencl().context();
     // Bands of rows keep every buffer below the device's largest allocation (any image size the
     // host can hold); the device copy of a band is kept between frames of one size.
     const int band = std::min(bandRows(st.rt.info(), g.width, GB_PLANES * sizeof(float)), rowEnd - rowBegin);
@@ -245,7 +246,7 @@ Image Shader::shade(const GBuffer& g, const ShadeOptions& options, ShadeStats* s
     k.setArg(a++, kFresnelLambertSize);
     k.setArg(a++, exact ? 0 : 1);
     k.setArg(a++, bo);
-    auto& q = st.rt.queue();
+    auto& q = st.rt.opencl().queue();
     for (int y0 = rowBegin; y0 < rowEnd; y0 += band) {
       const int rows = std::min(band, rowEnd - y0);
       const std::size_t bandPixels = std::size_t(g.width) * rows, first = std::size_t(y0) * g.width;
@@ -262,7 +263,7 @@ Image Shader::shade(const GBuffer& g, const ShadeOptions& options, ShadeStats* s
     }
   };
   try {
-    const auto& ctx = s.rt.context();
+    const auto& ctx = s.rt.opencl().context();
     // Under mpirun, this rank's rows (ShadeOptions::firstRow, rowCount); the exact integrator's
     // split-sum pass always covers the whole frame.
     const int yBegin = exact ? 0 : std::clamp(options.firstRow, 0, g.height);
@@ -282,7 +283,7 @@ Image Shader::shade(const GBuffer& g, const ShadeOptions& options, ShadeStats* s
     if (exact && !s.exactReady) {
       // The CDFs come from the full-resolution map the kernel reads, as it is on the device.
       std::vector<float> env(3 * std::size_t(s.light->envW) * s.light->envH);
-      s.rt.queue().enqueueReadBuffer(s.light->background, CL_TRUE, 0, env.size() * 4, env.data());
+      s.rt.opencl().queue().enqueueReadBuffer(s.light->background, CL_TRUE, 0, env.size() * 4, env.data());
       const auto cdf = detail::environmentCdf(env, s.light->envW, s.light->envH);
       s.envRows = readOnly(ctx, cdf.rows);
       s.envCols = readOnly(ctx, cdf.cols);
@@ -292,7 +293,7 @@ Image Shader::shade(const GBuffer& g, const ShadeOptions& options, ShadeStats* s
       all.sheen = all.ratifiedSheen = all.clearcoat = all.anisotropy = true;
       EvalOptions o = s.options;
       o.lobe = Lobe::All;
-      s.exactProgram = s.rt.program("ibl_exact.cl", materialDefines(o, all));
+      s.exactProgram = s.rt.opencl().program("ibl_exact.cl", materialDefines(o, all));
       s.exactReady = true;
     }
   } catch (const cl::Error&) {
@@ -311,7 +312,7 @@ Image Shader::shade(const GBuffer& g, const ShadeOptions& options, ShadeStats* s
                                 g.width, g.height, double(planes.size() * 4) / (1u << 30), s.rt.info().name,
                                 double(s.rt.info().maxAlloc) / (1u << 30)));
       try {
-        whole = readOnly(s.rt.context(), planes);
+        whole = readOnly(s.rt.opencl().context(), planes);
       } catch (const cl::Error&) {
         rethrowOpenCL("preparing the exact image-based light");
       }

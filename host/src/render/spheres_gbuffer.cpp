@@ -12,6 +12,7 @@
 #include "brdfcl/render.hpp"
 #include "kernels/common/shading_layout.h"
 #include "render/camera.hpp"
+#include "runtime/opencl.hpp"
 
 namespace brdfcl {
 
@@ -95,11 +96,11 @@ GBuffer renderSpheresGBuffer(Runtime& rt, const Scene& scene, int width, int hei
   const std::size_t np = std::size_t(width) * height;
   std::vector<float> planes(GB_PLANES * np);
   try {
-    auto program = rt.program("gbuffer_spheres.cl");
-    cl::Buffer bs(rt.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, spheres.size() * sizeof(brdfcl_sphere),
+    auto program = rt.opencl().program("gbuffer_spheres.cl");
+    cl::Buffer bs(rt.opencl().context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, spheres.size() * sizeof(brdfcl_sphere),
                   spheres.data());
     const int band = bandRows(rt.info(), width, GB_PLANES * sizeof(float));
-    cl::Buffer out(rt.context(), CL_MEM_WRITE_ONLY, std::size_t(GB_PLANES) * width * std::min(band, height) * 4);
+    cl::Buffer out(rt.opencl().context(), CL_MEM_WRITE_ONLY, std::size_t(GB_PLANES) * width * std::min(band, height) * 4);
     cl::Kernel k(program, "gbuffer_spheres");
     for (int y0 = 0; y0 < height; y0 += band) {
       const int rows = std::min(band, height - y0);
@@ -112,11 +113,11 @@ GBuffer renderSpheresGBuffer(Runtime& rt, const Scene& scene, int width, int hei
       k.setArg(5, rows);
       k.setArg(6, cameraFor(scene, width, height));
       k.setArg(7, out);
-      rt.queue().enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(std::size_t(width), std::size_t(rows)));
+      rt.opencl().queue().enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(std::size_t(width), std::size_t(rows)));
       for (int plane = 0; plane < GB_PLANES; ++plane)
-        rt.queue().enqueueReadBuffer(out, CL_FALSE, plane * bandPixels * 4, bandPixels * 4,
+        rt.opencl().queue().enqueueReadBuffer(out, CL_FALSE, plane * bandPixels * 4, bandPixels * 4,
                                      planes.data() + plane * np + std::size_t(y0) * width);
-      rt.queue().finish();
+      rt.opencl().queue().finish();
     }
   } catch (const cl::Error&) {
     rethrowOpenCL("ray-casting the spheres scene");

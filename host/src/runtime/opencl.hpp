@@ -1,6 +1,6 @@
-// The OpenCL runtime: device selection, one context and in-order queue per device, and a
-// program cache keyed by (device, build options, source). Every failing OpenCL call throws
-// brdfcl::Error naming the call and its error code; a build failure carries the build log.
+// The OpenCL objects behind a brdfcl::Runtime (brdfcl/runtime.hpp), private to the library: the
+// device, one context and in-order queue, and a program cache keyed by (build options, source).
+// Every failing OpenCL call throws brdfcl::Error naming the call and its error code.
 #pragma once
 #include <atomic>
 #include <CL/opencl.hpp>
@@ -14,21 +14,9 @@
 #include <tuple>
 #include <vector>
 
+#include "brdfcl/runtime.hpp"
+
 namespace brdfcl {
-
-struct DeviceInfo {
-  std::size_t index;  // position in the flattened list of all platforms' devices
-  std::string name;
-  std::string platform;
-  std::string type;  // CPU, GPU, ACCELERATOR, ...
-  unsigned computeUnits;
-  std::string openclC;  // CL_DEVICE_OPENCL_C_VERSION
-  std::uint64_t maxAlloc;
-  std::uint64_t globalMem;
-};
-
-// All devices of all platforms. Throws "no OpenCL platform found; ..." (exit 2) if none.
-std::vector<DeviceInfo> listDevices();
 
 // Name of an OpenCL error code, e.g. "CL_OUT_OF_RESOURCES".
 const char* clErrorName(int code);
@@ -45,28 +33,18 @@ const char* clErrorName(int code);
 // are not, so every brdfcl launch path creates its own cl::Kernel (SoaBatch per batch,
 // evaluateGrid() and bakeSheenAlbedo() per call) and callers using queue() directly must do the
 // same. A blocking read or finish() on the shared queue may also wait for other threads' work,
-// which costs time, never correctness. Construction and destruction are not concurrent-safe:
-// destroy the Runtime only after every thread is done with it.
-class Runtime {
- public:
-  // selector: "" (then $BRDFCL_DEVICE, then device 0), an index, or a name substring.
-  explicit Runtime(const std::string& selector = "");
+// which costs time, never correctness.
+struct Runtime::OpenCL {
+  explicit OpenCL(const std::string& selector);
 
   const cl::Device& device() const { return device_; }
   const cl::Context& context() const { return context_; }
   cl::CommandQueue& queue() { return queue_; }
-  const DeviceInfo& info() const { return info_; }
 
   // Builds (or returns from the cache) the program for an embedded kernel file, e.g. "eval.cl",
   // with its #include "..." lines resolved from kernels/. `defines` are extra -D options.
   cl::Program program(const std::string& kernelFile, const std::string& defines = "");
-  // Programs this Runtime built from binaries in brdfcl's disk cache rather than from source.
-  std::size_t programsFromDiskCache() const { return fromDisk_; }
 
-  // The -cl-std option picked from the device's OpenCL C version.
-  const std::string& standardOption() const { return clStd_; }
-
- private:
   cl::Device device_;
   cl::Context context_;
   cl::CommandQueue queue_;
