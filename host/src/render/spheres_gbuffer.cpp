@@ -45,9 +45,9 @@ Scene spheresScene() {
   return s;
 }
 
-GBuffer renderSpheresGBuffer(Runtime& rt, const Scene& scene, int width, int height) {
-  if (width < 1 || height < 1 || width > 16384 || height > 16384)
-    throw Error(fmt::format("image size {}x{} is out of range; use 1 to 16384 per side", width, height));
+namespace {
+// The 6 x 6 spheres of the built-in scene: a row per material feature, varied along the row.
+std::vector<brdfcl_sphere> sphereGrid() {
   std::vector<brdfcl_sphere> spheres;
   for (int row = 0; row < 6; ++row)
     for (int col = 0; col < 6; ++col) {
@@ -93,6 +93,13 @@ GBuffer renderSpheresGBuffer(Runtime& rt, const Scene& scene, int width, int hei
       for (int c = 0; c < 3; ++c) s.base_color[c] = base[c];
       spheres.push_back(s);
     }
+  return spheres;
+}
+
+// The G-buffer planes (GB_PLANES of width x height) of `spheres` ray-cast on the device, in bands
+// of rows that fit its largest allocation.
+std::vector<float> castSpheres(Runtime& rt, const Scene& scene, std::vector<brdfcl_sphere> spheres, int width,
+                               int height) {
   const std::size_t np = std::size_t(width) * height;
   std::vector<float> planes(GB_PLANES * np);
   try {
@@ -122,6 +129,12 @@ GBuffer renderSpheresGBuffer(Runtime& rt, const Scene& scene, int width, int hei
   } catch (const cl::Error&) {
     rethrowOpenCL("ray-casting the spheres scene");
   }
+  return planes;
+}
+
+// The G-buffer held in `planes` (the kernel's plane order, layout shading_layout.h).
+GBuffer gbufferFromPlanes(const std::vector<float>& planes, int width, int height) {
+  const std::size_t np = std::size_t(width) * height;
   GBuffer g;
   g.width = width;
   g.height = height;
@@ -146,6 +159,14 @@ GBuffer renderSpheresGBuffer(Runtime& rt, const Scene& scene, int width, int hei
   g.clearcoatN = get3(GB_CCN_X);
   g.anisotropyStrength = get1(GB_ANISO_STRENGTH);
   g.anisotropyRotation = get1(GB_ANISO_ROTATION);
+  return g;
+}
+}  // namespace
+
+GBuffer renderSpheresGBuffer(Runtime& rt, const Scene& scene, int width, int height) {
+  if (width < 1 || height < 1 || width > 16384 || height > 16384)
+    throw Error(fmt::format("image size {}x{} is out of range; use 1 to 16384 per side", width, height));
+  GBuffer g = gbufferFromPlanes(castSpheres(rt, scene, sphereGrid(), width, height), width, height);
   // Rays start 1e-4 along the ray (the kernel's hit threshold), a bound too small to record.
   g.camera = gbufferCamera(cameraFor(scene, width, height), scene.fovDegrees);
   return g;
