@@ -597,9 +597,10 @@ std::string gltfWith(const std::string& secondMaterial) {
          "\n  ]\n}\n";
 }
 
-TEST_F(Cli, BadInputIsOneLineErrorAndLeavesNoOutput) {
+// Each bad input eval refuses, with the words its one-line error must hold.
+std::vector<BadCase> badInputCases() {
   const double nan = std::nan(""), inf = INFINITY;
-  std::vector<BadCase> cases = {
+  return {
       // Files that cannot be read.
       {"missing materials", {}, "absent.json", "s.csv", "o.csv", {}, {"absent.json", "No such file"}},
       {"materials is a directory", {}, "adir", "s.csv", "o.csv", {}, {"adir"}},
@@ -678,6 +679,10 @@ TEST_F(Cli, BadInputIsOneLineErrorAndLeavesNoOutput) {
       {"bad device index", {}, "m.json", "s.csv", "o.csv", {"--device", "99"}, {"99"}},
       {"no device of that name", {}, "m.json", "s.csv", "o.npy", {"--device", "no-such"}, {"no-such"}},
   };
+}
+
+TEST_F(Cli, BadInputIsOneLineErrorAndLeavesNoOutput) {
+  std::vector<BadCase> cases = badInputCases();
   // Root reads any file whatever its mode, so the permission case only means something otherwise.
   if (::geteuid() != 0)
     cases.push_back({"unreadable materials", {{"secret.json", kGltf}}, "secret.json", "s.csv", "o.csv", {},
