@@ -1,4 +1,4 @@
-// `brdfcl compare` and its library (brdfcl/compare.hpp): the statistics against numbers computed
+// `brdfcl compare` and its library (parity/compare.hpp): the statistics against numbers computed
 // here from hand-made arrays and from our own evaluations of the same directions, the direction
 // sets, a profile against itself, the heat-map PNGs, and the command's output and exit codes.
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// The engine and pinned source each profile names (brdfcl/profile_version.hpp): every profile has
+// The engine and pinned source each profile names (model/profile_version.hpp): every profile has
 // one, every commit it names is the one docs/profiles.md pins, and `compare` (table and JSON) and
 // `render`/`shade --profile` print it; a failed run still prints its one error line only.
 #include <gtest/gtest.h>

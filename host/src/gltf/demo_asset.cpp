@@ -1,6 +1,6 @@
 // writeDemoAsset: the built-in sphere sweep as a .glb, assembled here (JSON with nlohmann, GLB
 // container by hand) so that every extension object is written exactly as the specs spell it.
-// Geometry and texture designs are described in brdfcl/demo_asset.hpp.
+// Geometry and texture designs are described in gltf/demo_asset.hpp.
 #include "gltf/demo_asset.hpp"
 
 #include <algorithm>
