@@ -9,7 +9,7 @@
 #include <string>
 
 #include "brdfcl/gltf.hpp"
-#include "brdfcl/gltf_frame.hpp"
+#include "host/src/render/gltf_frame.hpp"
 
 using namespace brdfcl;
 

@@ -7,7 +7,7 @@
 
 #include "brdfcl/albedo.hpp"
 #include "brdfcl/error.hpp"
-#include "brdfcl/gallery.hpp"
+#include "host/src/model/gallery.hpp"
 #include "brdfcl/io.hpp"
 #include "commands.hpp"
 #include "model_options.hpp"

@@ -127,22 +127,27 @@ void benchProfile(const BenchArgs& a, Profile profile) {
   }
 }
 
+// The kernel's figures in --json, as both kernel reports give them (the keys print sorted).
+nlohmann::json kernelJson(const BenchArgs& a, Runtime& rt, double kernel, double launch, double firstRun) {
+  return {{"samples_per_second", double(a.n) / kernel},
+          {"n", a.n},
+          {"lobe", a.lobe},
+          {"materials", a.materials},
+          {"device", rt.info().name},
+          {"runs", a.runs},
+          {"kernel_seconds_median", kernel},
+          {"first_run_seconds", firstRun},
+          {"launch_seconds_median", launch},
+          {"launch_samples_per_second", double(a.n) / launch}};
+}
+
 // --pairs FILE: the kernel alone on the outside peer's pairs; it times its own side and needs the
 // kernel's figure and the material.
 void reportPairs(const BenchArgs& a, Runtime& rt, const bench::Bench& b, double kernel, double launch, double firstRun) {
   const double sps = double(a.n) / kernel;
   if (a.json) {
-    nlohmann::json j = {{"samples_per_second", sps},
-                              {"n", a.n},
-                              {"lobe", a.lobe},
-                              {"materials", a.materials},
-                              {"device", rt.info().name},
-                              {"runs", a.runs},
-                              {"kernel_seconds_median", kernel},
-                              {"first_run_seconds", firstRun},
-                              {"launch_seconds_median", launch},
-                              {"launch_samples_per_second", double(a.n) / launch},
-                              {"material0", materialJson(b.workload().materials[0])}};
+    nlohmann::json j = kernelJson(a, rt, kernel, launch, firstRun);
+    j["material0"] = materialJson(b.workload().materials[0]);
     // With --indices, every material, so that the outside peer evaluates the same ones by the same
     // indices (without, the list would only lengthen the output: material0 describes K = 1).
     if (!a.indices.empty()) {
@@ -221,26 +226,15 @@ void benchKernel(BenchArgs& a) {
   const double sps = n / kernel, spsSimd = n / simd, spsScalar = n / scalar;
   const double bound = triad / bench::kBytesPerSample;
   if (a.json) {
-    nlohmann::json j = {
-        {"samples_per_second", sps},
-        {"n", a.n},
-        {"lobe", a.lobe},
-        {"materials", a.materials},
-        {"device", rt.info().name},
-        {"runs", a.runs},
-        {"kernel_seconds_median", kernel},
-        {"launch_seconds_median", launch},
-        {"launch_samples_per_second", n / launch},
-        {"first_run_seconds", firstRun},
-        {"eval_1024_seconds", e2e1k},
-        {"bytes_per_sample", bench::kBytesPerSample},
-        {"peers",
-         {{"scalar_cpp_samples_per_second", spsScalar},
-          {"openmp_simd_samples_per_second", spsSimd},
-          {"openmp_simd_max_rel_deviation", simdDeviation},
-          {"stream_triad_bytes_per_second", triad},
-          {"memory_bound_samples_per_second", bound}}},
-        {"ratios", {{"vs_scalar_cpp", sps / spsScalar}, {"vs_openmp_simd", sps / spsSimd}, {"of_memory_bound", sps / bound}}}};
+    nlohmann::json j = kernelJson(a, rt, kernel, launch, firstRun);
+    j["eval_1024_seconds"] = e2e1k;
+    j["bytes_per_sample"] = bench::kBytesPerSample;
+    j["peers"] = {{"scalar_cpp_samples_per_second", spsScalar},
+                  {"openmp_simd_samples_per_second", spsSimd},
+                  {"openmp_simd_max_rel_deviation", simdDeviation},
+                  {"stream_triad_bytes_per_second", triad},
+                  {"memory_bound_samples_per_second", bound}};
+    j["ratios"] = {{"vs_scalar_cpp", sps / spsScalar}, {"vs_openmp_simd", sps / spsSimd}, {"of_memory_bound", sps / bound}};
     std::printf("%s\n", j.dump(2).c_str());
     return;
   }

@@ -1,8 +1,8 @@
 // `brdfcl cache --info | --clear`: shows brdfcl's disk cache (folder, budget, entries and bytes by
-// kind) or removes its entries. The listing and the removal live in the library (brdfcl/cache.hpp).
+// kind) or removes its entries. The listing and the removal live in the library (io/cache.hpp).
 #include <fmt/format.h>
 
-#include "brdfcl/cache.hpp"
+#include "host/src/io/cache.hpp"
 #include "brdfcl/error.hpp"
 #include "commands.hpp"
 

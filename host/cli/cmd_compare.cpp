@@ -1,13 +1,13 @@
 // `brdfcl compare --materials M.json --profile A [--against B]`: how far one parity profile's f is
 // from another's, per material and lobe, with directional albedos and optional log2-ratio heat maps.
-// The work is compareProfiles (brdfcl/compare.hpp); this file checks options and prints.
+// The work is compareProfiles (parity/compare.hpp); this file checks options and prints.
 #include <cstdio>
 #include <filesystem>
 #include <memory>
 
 #include <fmt/format.h>
 
-#include "brdfcl/compare.hpp"
+#include "host/src/parity/compare.hpp"
 #include "brdfcl/error.hpp"
 #include "brdfcl/io.hpp"
 #include "commands.hpp"

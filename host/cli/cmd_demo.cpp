@@ -6,7 +6,7 @@
 
 #include <fmt/format.h>
 
-#include "brdfcl/demo_asset.hpp"
+#include "host/src/gltf/demo_asset.hpp"
 #include "brdfcl/error.hpp"
 #include "brdfcl/image.hpp"
 #include "brdfcl/io.hpp"

@@ -9,7 +9,7 @@
 #include <fmt/format.h>
 
 #include "brdfcl/error.hpp"
-#include "brdfcl/image_diff.hpp"
+#include "host/src/parity/diff.hpp"
 #include "brdfcl/io.hpp"
 #include "commands.hpp"
 

@@ -8,7 +8,7 @@
 #include <memory>
 #include <string>
 
-#include "brdfcl/device_set.hpp"
+#include "host/src/devices/device_set.hpp"
 #include "brdfcl/error.hpp"
 #include "brdfcl/evaluator.hpp"
 #include "brdfcl/io.hpp"
@@ -30,7 +30,7 @@ struct EvalArgs {
   long long chunk = static_cast<long long>(StreamOptions::kDefaultChunk);
 };
 
-// --device all or a list (0,2): every chunk split across the devices (brdfcl/device_set.hpp).
+// --device all or a list (0,2): every chunk split across the devices (devices/device_set.hpp).
 void evaluateOnDevices(const std::string& devices, const EvalOptions& o, const std::vector<MaterialParams>& materials,
                        SampleStream& samples, const std::string& outPath, const StreamOptions& so) {
   DeviceSet set(devices);

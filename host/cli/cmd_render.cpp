@@ -8,7 +8,7 @@
 
 #include "brdfcl/error.hpp"
 #include "brdfcl/image.hpp"
-#include "brdfcl/image_diff.hpp"
+#include "host/src/parity/diff.hpp"
 #include "brdfcl/io.hpp"
 #include "commands.hpp"
 #include "host/src/io/output.hpp"

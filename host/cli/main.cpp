@@ -9,8 +9,8 @@
 #include <fmt/format.h>
 
 #include "arguments.hpp"
-#include "brdfcl/cache.hpp"
-#include "brdfcl/cleanup.hpp"
+#include "host/src/io/cache.hpp"
+#include "host/src/io/cleanup.hpp"
 #include "brdfcl/error.hpp"
 #include "brdfcl/runtime.hpp"
 #include "commands.hpp"

@@ -13,17 +13,17 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
-#include "brdfcl/demo_asset.hpp"
+#include "host/src/gltf/demo_asset.hpp"
 #include "brdfcl/frame_budget.hpp"
-#include "brdfcl/device_set.hpp"
+#include "host/src/devices/device_set.hpp"
 #include "brdfcl/error.hpp"
 #include "brdfcl/gbuffer.hpp"
 #include "brdfcl/gltf.hpp"
-#include "brdfcl/gltf_frame.hpp"
+#include "host/src/render/gltf_frame.hpp"
 #include "brdfcl/image.hpp"
-#include "brdfcl/image_diff.hpp"
+#include "host/src/parity/diff.hpp"
 #include "brdfcl/io.hpp"
-#include "brdfcl/profile_version.hpp"
+#include "host/src/model/profile_version.hpp"
 #include "brdfcl/render.hpp"
 #include "brdfcl/render_job.hpp"
 #include "commands.hpp"

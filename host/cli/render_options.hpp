@@ -11,11 +11,11 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
-#include "brdfcl/device_set.hpp"
+#include "host/src/devices/device_set.hpp"
 #include "brdfcl/error.hpp"
 #include "brdfcl/gbuffer.hpp"
 #include "brdfcl/gltf.hpp"
-#include "brdfcl/profile_version.hpp"
+#include "host/src/model/profile_version.hpp"
 #include "brdfcl/render.hpp"
 #include "brdfcl/render_job.hpp"
 #include "host/src/mpi/session.hpp"

@@ -27,7 +27,7 @@
 #include "brdfcl/evaluator.hpp"
 #include "brdfcl/gbuffer.hpp"
 #include "brdfcl/image.hpp"
-#include "brdfcl/image_diff.hpp"
+#include "host/src/parity/diff.hpp"
 #include "brdfcl/io.hpp"
 #include "brdfcl/lut.hpp"
 #include "brdfcl/material.hpp"

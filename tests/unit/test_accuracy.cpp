@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "support.hpp"
+#include "host/src/runtime/opencl.hpp"
 
 using namespace brdfcl;
 using namespace brdfcl::test;

@@ -7,9 +7,11 @@
 #include <string>
 #include <vector>
 
+#include "cli_child.hpp"
 #include "process.hpp"
 
 namespace fs = std::filesystem;
+using brdfcl::test::expectOneLineError;
 using brdfcl::test::RunResult;
 using brdfcl::test::ScratchDir;
 
@@ -23,16 +25,7 @@ std::string loneCli(const ScratchDir& dir) {
 }
 
 RunResult run(const ScratchDir& dir, const std::string& exe, std::vector<std::string> args) {
-  args.insert(args.begin(), exe);
-  brdfcl::test::ProcessOptions o;
-  o.cwd = dir.dir();
-  return brdfcl::test::runProcess(std::move(args), dir.dir(), o);
-}
-
-void expectOneLineError(const RunResult& r, const std::string& text) {
-  EXPECT_EQ(r.status, 2) << r.describe();
-  ASSERT_EQ(r.errorLines().size(), 1u) << r.describe();
-  EXPECT_NE(r.errorLines()[0].find(text), std::string::npos) << "expected '" << text << "' in\n" << r.describe();
+  return brdfcl::test::runCli(dir, std::move(args), {}, exe);
 }
 
 TEST(BenchPeersModule, TheCliHoldsNoPeerCode) {

@@ -20,7 +20,7 @@
 #include <string>
 #include <vector>
 
-#include "brdfcl/cache.hpp"
+#include "host/src/io/cache.hpp"
 #include "brdfcl/error.hpp"
 #include "host/src/io/disk_cache.hpp"
 #include "process.hpp"

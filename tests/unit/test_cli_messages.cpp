@@ -15,11 +15,13 @@
 #include "brdfcl/error.hpp"
 #include "brdfcl/frame_budget.hpp"
 #include "brdfcl/io.hpp"
+#include "cli_child.hpp"
 #include "process.hpp"
 #include "support.hpp"
 
 namespace fs = std::filesystem;
 using namespace brdfcl;
+using brdfcl::test::expectOneLineError;
 using brdfcl::test::RunResult;
 using brdfcl::test::ScratchDir;
 using brdfcl::test::errorOf;
@@ -35,18 +37,10 @@ constexpr double kEarlyLimitSeconds = 0.5;
 
 RunResult cli(const ScratchDir& dir, std::vector<std::string> args, std::map<std::string, std::string> env = {},
               std::size_t addressSpaceMiB = 0) {
-  args.insert(args.begin(), BRDFCL_CLI_PATH);
   brdfcl::test::ProcessOptions o;
   o.env = std::move(env);
-  o.cwd = dir.dir();
   o.addressSpaceMiB = addressSpaceMiB;
-  return brdfcl::test::runProcess(std::move(args), dir.dir(), o);
-}
-
-void expectOneLineError(const RunResult& r, const std::string& text) {
-  EXPECT_EQ(r.status, 2) << r.describe();
-  ASSERT_EQ(r.errorLines().size(), 1u) << r.describe();
-  EXPECT_NE(r.errorLines()[0].find(text), std::string::npos) << "expected '" << text << "' in\n" << r.describe();
+  return brdfcl::test::runCli(dir, std::move(args), std::move(o));
 }
 
 TEST(CliMessages, UnknownSubcommandIsNamedWithSuggestion) {

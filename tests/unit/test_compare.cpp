@@ -1,4 +1,4 @@
-// `brdfcl compare` and its library (brdfcl/compare.hpp): the statistics against numbers computed
+// `brdfcl compare` and its library (parity/compare.hpp): the statistics against numbers computed
 // here from hand-made arrays and from our own evaluations of the same directions, the direction
 // sets, a profile against itself, the heat-map PNGs (the field only, no text), and the command's
 // output and exit codes.
@@ -19,7 +19,7 @@
 #include <stb/stb_image.h>
 
 #include "brdfcl/albedo.hpp"
-#include "brdfcl/compare.hpp"
+#include "host/src/parity/compare.hpp"
 #include "brdfcl/error.hpp"
 #include "brdfcl/evaluator.hpp"
 #include "process.hpp"

@@ -19,7 +19,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "brdfcl/demo_asset.hpp"
+#include "host/src/gltf/demo_asset.hpp"
 #include "brdfcl/error.hpp"
 #include "process.hpp"
 #include "support.hpp"

@@ -42,7 +42,7 @@
 #include "brdfcl/io.hpp"
 #include "brdfcl/lut.hpp"
 #include "brdfcl/render.hpp"
-#include "brdfcl/runtime.hpp"
+#include "host/src/runtime/opencl.hpp"
 #include "kernels/common/shading_layout.h"
 
 namespace fs = std::filesystem;
@@ -162,7 +162,7 @@ TEST_F(Errors, FrameLargerThanTheDeviceAllocationRendersInBands) {
 TEST_F(Errors, RethrowOpenClFormatsTheFailedCall) {
   EXPECT_EQ(errorOf([] {
               try {
-                cl::Buffer b(runtime().context(), CL_MEM_READ_ONLY, 0);
+                cl::Buffer b(runtime().opencl().context(), CL_MEM_READ_ONLY, 0);
               } catch (const cl::Error&) {
                 rethrowOpenCL("allocating nothing");
               }

@@ -14,13 +14,14 @@
 #include <string>
 #include <vector>
 
-#include "brdfcl/demo_asset.hpp"
-#include "brdfcl/gallery.hpp"
+#include "host/src/gltf/demo_asset.hpp"
+#include "host/src/model/gallery.hpp"
 #include "brdfcl/image.hpp"
 #include "brdfcl/render.hpp"
 #include "furnace.hpp"
 #include "process.hpp"
 #include "support.hpp"
+#include "host/src/runtime/opencl.hpp"
 
 using namespace brdfcl;
 using namespace brdfcl::test;
@@ -246,7 +247,7 @@ TEST(ExactIbl, SplitSumOptionsGiveTheDefaultBytes) {
 // integral pi only if the density of the samples is the pdf, and only from lanes that compute.
 TEST(ExactIbl, SamplersMatchTheirPdfsAtSixteenLanes) {
   auto& rt = runtime();
-  auto program = rt.program("probe_sampling.cl", "-DBRDFCL_W=16");
+  auto program = rt.opencl().program("probe_sampling.cl", "-DBRDFCL_W=16");
   const int side = 512, n = side * side;
   std::vector<float> u1(n), u2(n), out(n);
   std::mt19937 rng(7);
@@ -256,9 +257,9 @@ TEST(ExactIbl, SamplersMatchTheirPdfsAtSixteenLanes) {
       u1[a * side + b] = std::min((a + jitter(rng)) / side, 0.99999994f);
       u2[a * side + b] = std::min((b + jitter(rng)) / side, 0.99999994f);
     }
-  cl::Buffer b1(rt.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, std::size_t(n) * 4, u1.data());
-  cl::Buffer b2(rt.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, std::size_t(n) * 4, u2.data());
-  cl::Buffer bo(rt.context(), CL_MEM_WRITE_ONLY, std::size_t(n) * 4);
+  cl::Buffer b1(rt.opencl().context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, std::size_t(n) * 4, u1.data());
+  cl::Buffer b2(rt.opencl().context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, std::size_t(n) * 4, u2.data());
+  cl::Buffer bo(rt.opencl().context(), CL_MEM_WRITE_ONLY, std::size_t(n) * 4);
   cl::Kernel k(program, "probe_sampling");
   struct Case {
     const char* what;
@@ -280,8 +281,8 @@ TEST(ExactIbl, SamplersMatchTheirPdfsAtSixteenLanes) {
     for (float f : {c.v[0], c.v[1], c.v[2], c.ax, c.ay}) k.setArg(a++, f);
     k.setArg(a++, c.technique);
     k.setArg(a++, bo);
-    rt.queue().enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(n / 16));
-    rt.queue().enqueueReadBuffer(bo, CL_TRUE, 0, n * 4, out.data());
+    rt.opencl().queue().enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(n / 16));
+    rt.opencl().queue().enqueueReadBuffer(bo, CL_TRUE, 0, n * 4, out.data());
     double sum = 0;
     for (float x : out) sum += x;
     EXPECT_NEAR(sum / n, M_PI, 0.01 * M_PI) << c.what;

@@ -8,6 +8,7 @@
 #include "support.hpp"
 #include "host/src/eval/workload.hpp"
 #include "peers.hpp"
+#include "host/src/runtime/opencl.hpp"
 
 using namespace brdfcl;
 using namespace brdfcl::test;
@@ -26,14 +27,14 @@ struct Probe {
 
 Probe probe(std::vector<float> x) {
   Runtime& rt = runtime();
-  auto program = rt.program("probe_fastmath.cl", "-DBRDFCL_W=1");
+  auto program = rt.opencl().program("probe_fastmath.cl", "-DBRDFCL_W=1");
   Probe p{std::move(x), {}};
   p.out.resize(4 * p.x.size());
-  cl::Buffer in(rt.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, p.x.size() * 4, p.x.data());
-  cl::Buffer out(rt.context(), CL_MEM_WRITE_ONLY, p.out.size() * 4);
+  cl::Buffer in(rt.opencl().context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, p.x.size() * 4, p.x.data());
+  cl::Buffer out(rt.opencl().context(), CL_MEM_WRITE_ONLY, p.out.size() * 4);
   cl::KernelFunctor<cl::Buffer, cl::Buffer, cl_uint> k(program, "probe_fastmath");
-  k(cl::EnqueueArgs(rt.queue(), cl::NDRange(p.x.size())), in, out, cl_uint(p.x.size()));
-  rt.queue().enqueueReadBuffer(out, CL_TRUE, 0, p.out.size() * 4, p.out.data());
+  k(cl::EnqueueArgs(rt.opencl().queue(), cl::NDRange(p.x.size())), in, out, cl_uint(p.x.size()));
+  rt.opencl().queue().enqueueReadBuffer(out, CL_TRUE, 0, p.out.size() * 4, p.out.data());
   return p;
 }
 

@@ -23,7 +23,7 @@
 #include <string>
 #include <vector>
 
-#include "brdfcl/demo_asset.hpp"
+#include "host/src/gltf/demo_asset.hpp"
 #include "brdfcl/gbuffer.hpp"
 #include "brdfcl/gltf.hpp"
 #include "brdfcl/gltf_render.hpp"

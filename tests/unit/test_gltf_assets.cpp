@@ -15,7 +15,7 @@
 
 #include "assets.hpp"
 #include "brdfcl/gltf.hpp"
-#include "brdfcl/gltf_frame.hpp"
+#include "host/src/render/gltf_frame.hpp"
 #include "brdfcl/image.hpp"
 #include "process.hpp"
 #include "support.hpp"

@@ -11,7 +11,7 @@
 
 #include <fmt/format.h>
 
-#include "brdfcl/demo_asset.hpp"
+#include "host/src/gltf/demo_asset.hpp"
 #include "brdfcl/gbuffer.hpp"
 #include "brdfcl/gltf.hpp"
 #include "brdfcl/image.hpp"

@@ -6,7 +6,7 @@
 #include <fstream>
 #include <set>
 
-#include "brdfcl/gltf_frame.hpp"
+#include "host/src/render/gltf_frame.hpp"
 #include "process.hpp"
 #include "support.hpp"
 

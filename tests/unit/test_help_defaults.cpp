@@ -5,20 +5,15 @@
 #include <string>
 #include <vector>
 
+#include "cli_child.hpp"
 #include "process.hpp"
 
+using brdfcl::test::runCli;
 using brdfcl::test::RunResult;
 using brdfcl::test::ScratchDir;
 using brdfcl::test::slurp;
 
 namespace {
-
-RunResult cli(const ScratchDir& dir, std::vector<std::string> args) {
-  args.insert(args.begin(), BRDFCL_CLI_PATH);
-  brdfcl::test::ProcessOptions o;
-  o.cwd = dir.dir();
-  return brdfcl::test::runProcess(std::move(args), dir.dir(), o);
-}
 
 // The help line of one option, "" when the help has none.
 std::string helpLine(const std::string& help, const std::string& option) {
@@ -32,7 +27,7 @@ std::string helpLine(const std::string& help, const std::string& option) {
 
 TEST(HelpDefaults, RenderEnvironmentNamesTheSkyForGltfAndTheStudioForTheSpheres) {
   ScratchDir dir("helpdefaults");
-  const RunResult r = cli(dir, {"render", "--help"});
+  const RunResult r = runCli(dir, {"render", "--help"});
   ASSERT_EQ(r.status, 0) << r.describe();
   const std::string line = helpLine(r.out, "--environment");
   ASSERT_FALSE(line.empty()) << r.out;
@@ -45,13 +40,13 @@ TEST(HelpDefaults, RenderEnvironmentNamesTheSkyForGltfAndTheStudioForTheSpheres)
 
 TEST(HelpDefaults, SpheresWithoutEnvironmentRenderAsUnderTheStudio) {
   ScratchDir dir("helpdefaults");
-  const RunResult plain = cli(dir, {"render", "--size", "24x24", "--exr", "plain.exr", "--out", "plain.png"});
+  const RunResult plain = runCli(dir, {"render", "--size", "24x24", "--exr", "plain.exr", "--out", "plain.png"});
   ASSERT_EQ(plain.status, 0) << plain.describe();
   const RunResult studio =
-      cli(dir, {"render", "--size", "24x24", "--environment", "studio", "--exr", "studio.exr", "--out", "studio.png"});
+      runCli(dir, {"render", "--size", "24x24", "--environment", "studio", "--exr", "studio.exr", "--out", "studio.png"});
   ASSERT_EQ(studio.status, 0) << studio.describe();
   const RunResult sky =
-      cli(dir, {"render", "--size", "24x24", "--environment", "sky", "--exr", "sky.exr", "--out", "sky.png"});
+      runCli(dir, {"render", "--size", "24x24", "--environment", "sky", "--exr", "sky.exr", "--out", "sky.png"});
   ASSERT_EQ(sky.status, 0) << sky.describe();
   EXPECT_EQ(slurp(dir.path("plain.png")), slurp(dir.path("studio.png")));
   EXPECT_NE(slurp(dir.path("plain.png")), slurp(dir.path("sky.png")));

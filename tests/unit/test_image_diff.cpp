@@ -23,8 +23,8 @@
 
 #include "brdfcl/error.hpp"
 #include "brdfcl/image.hpp"
-#include "brdfcl/image_diff.hpp"
-#include "brdfcl/plot.hpp"
+#include "host/src/parity/diff.hpp"
+#include "host/src/plot/plot.hpp"
 #include "process.hpp"
 #include "support.hpp"
 

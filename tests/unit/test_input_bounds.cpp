@@ -22,10 +22,12 @@
 #include "brdfcl/image.hpp"
 #include "gltf_builder.hpp"
 #include "io/input_limits.hpp"
+#include "cli_child.hpp"
 #include "process.hpp"
 #include "support.hpp"
 
 using namespace brdfcl;
+using brdfcl::test::expectOneLineError;
 using brdfcl::test::RunResult;
 using brdfcl::test::ScratchDir;
 using brdfcl::test::writeFile;
@@ -38,19 +40,11 @@ std::size_t childAddressSpaceMiB() { return brdfcl::test::kAddressSanitizer ? 0 
 
 RunResult cli(const ScratchDir& dir, std::vector<std::string> args, std::map<std::string, std::string> env = {},
               std::size_t addressSpaceMiB = childAddressSpaceMiB()) {
-  args.insert(args.begin(), BRDFCL_CLI_PATH);
   brdfcl::test::ProcessOptions o;
   o.env = std::move(env);
-  o.cwd = dir.dir();
   o.addressSpaceMiB = addressSpaceMiB;
   o.timeout = std::chrono::seconds(60);
-  return brdfcl::test::runProcess(std::move(args), dir.dir(), o);
-}
-
-void expectOneLineError(const RunResult& r, const std::string& text) {
-  EXPECT_EQ(r.status, 2) << r.describe();
-  ASSERT_EQ(r.errorLines().size(), 1u) << r.describe();
-  EXPECT_NE(r.errorLines()[0].find(text), std::string::npos) << "expected '" << text << "' in\n" << r.describe();
+  return brdfcl::test::runCli(dir, std::move(args), std::move(o));
 }
 
 // A refusal from the header reads a few kilobytes: far below the gigabytes the image declares.

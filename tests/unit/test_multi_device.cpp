@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "brdfcl/device_set.hpp"
+#include "host/src/devices/device_set.hpp"
 #include "brdfcl/error.hpp"
 #include "process.hpp"
 #include "support.hpp"

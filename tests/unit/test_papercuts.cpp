@@ -12,26 +12,16 @@
 #include "brdfcl/frame_budget.hpp"
 #include "brdfcl/image.hpp"
 #include "brdfcl/runtime.hpp"
+#include "cli_child.hpp"
 #include "process.hpp"
 #include "support.hpp"
 
+using brdfcl::test::runCli;
+using brdfcl::test::expectOneLineError;
 using brdfcl::test::RunResult;
 using brdfcl::test::ScratchDir;
 
 namespace {
-
-RunResult cli(const ScratchDir& dir, std::vector<std::string> args) {
-  args.insert(args.begin(), BRDFCL_CLI_PATH);
-  brdfcl::test::ProcessOptions o;
-  o.cwd = dir.dir();
-  return brdfcl::test::runProcess(std::move(args), dir.dir(), o);
-}
-
-void expectOneLineError(const RunResult& r, const std::string& text) {
-  EXPECT_EQ(r.status, 2) << r.describe();
-  ASSERT_EQ(r.errorLines().size(), 1u) << r.describe();
-  EXPECT_NE(r.errorLines()[0].find(text), std::string::npos) << "expected '" << text << "' in\n" << r.describe();
-}
 
 int countContaining(const std::vector<std::string>& lines, const std::string& text) {
   int n = 0;
@@ -48,11 +38,11 @@ constexpr const char* kTextured = R"({"asset": {"version": "2.0"}, "materials": 
 TEST(Papercuts, AlbedoMaterialOutOfRangeIsTheOnlyLine) {
   ScratchDir dir("papercuts");
   std::ofstream(dir.path("m.gltf")) << kTextured;
-  const RunResult bad = cli(dir, {"albedo", "--materials", "m.gltf", "--material", "9"});
+  const RunResult bad = runCli(dir, {"albedo", "--materials", "m.gltf", "--material", "9"});
   expectOneLineError(bad, "--material 9 is out of range: m.gltf has 1 material(s), 0 to 0");
   EXPECT_TRUE(bad.warningLines().empty()) << bad.describe();
   // In range, the reader's warning is still printed.
-  const RunResult good = cli(dir, {"albedo", "--materials", "m.gltf", "--material", "0"});
+  const RunResult good = runCli(dir, {"albedo", "--materials", "m.gltf", "--material", "0"});
   ASSERT_EQ(good.status, 0) << good.describe();
   EXPECT_EQ(countContaining(good.warningLines(), "texture references are ignored"), 1) << good.describe();
 }
@@ -64,14 +54,14 @@ TEST(Papercuts, MessagesNameTheirOption) {
   auto with = [&](std::vector<std::string> extra) {
     std::vector<std::string> args = render;
     args.insert(args.end(), extra.begin(), extra.end());
-    return cli(dir, args);
+    return runCli(dir, args);
   };
   expectOneLineError(with({"--lights", "nolights"}),
                      "--lights 'nolights': cannot read: No such file or directory; give gltf, none, or a scene .json file");
   expectOneLineError(with({"--lights", "folder"}), "--lights 'folder': cannot read: Is a directory");
   expectOneLineError(with({"--env-intensity", "-1"}), "--env-intensity -1 is not a finite number >= 0");
   expectOneLineError(with({"--env-rotation", "inf"}), "--env-rotation inf is not a finite number of radians");
-  expectOneLineError(cli(dir, {"lut", "--kind", "sheen-e", "--out", "folder"}),
+  expectOneLineError(runCli(dir, {"lut", "--kind", "sheen-e", "--out", "folder"}),
                      "--out 'folder': cannot write: it is a directory; name a file inside it");
   EXPECT_FALSE(std::filesystem::exists(dir.path("o.png")));
 }
@@ -81,12 +71,12 @@ TEST(Papercuts, EnvironmentThatIsNotTwoToOneWarnsOnceNamingFileAndSize) {
   brdfcl::writeExrRgb(dir.path("square.exr"), 16, 16, std::vector<float>(3 * 16 * 16, 0.5f));
   brdfcl::writeExrRgb(dir.path("wide.exr"), 16, 8, std::vector<float>(3 * 16 * 8, 0.5f));
   // Two profiles read the environment twice; the warning still comes once.
-  const RunResult square = cli(dir, {"render", "--scene", "spheres", "--size", "8x8", "--environment", "square.exr",
+  const RunResult square = runCli(dir, {"render", "--scene", "spheres", "--size", "8x8", "--environment", "square.exr",
                                      "--profile", "khronos", "--diff-against", "spec", "--out", "d.png"});
   ASSERT_EQ(square.status, 0) << square.describe();
   EXPECT_EQ(countContaining(square.warningLines(), "square.exr: environment of 16x16 texels is not 2:1"), 1)
       << square.describe();
-  const RunResult wide = cli(dir, {"render", "--scene", "spheres", "--size", "8x8", "--environment", "wide.exr",
+  const RunResult wide = runCli(dir, {"render", "--scene", "spheres", "--size", "8x8", "--environment", "wide.exr",
                                    "--out", "w.png"});
   ASSERT_EQ(wide.status, 0) << wide.describe();
   EXPECT_EQ(countContaining(wide.warningLines(), "not 2:1"), 0) << wide.describe();

@@ -10,9 +10,9 @@
 
 #include "assets.hpp"
 #include "brdfcl/gltf.hpp"
-#include "brdfcl/gltf_frame.hpp"
+#include "host/src/render/gltf_frame.hpp"
 #include "brdfcl/image.hpp"
-#include "brdfcl/image_diff.hpp"
+#include "host/src/parity/diff.hpp"
 #include "process.hpp"
 #include "support.hpp"
 

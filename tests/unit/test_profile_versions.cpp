@@ -1,4 +1,4 @@
-// The engine and pinned source each profile names (brdfcl/profile_version.hpp): every profile has
+// The engine and pinned source each profile names (model/profile_version.hpp): every profile has
 // one, every commit it names is the one docs/profiles.md pins, and `compare` (table and JSON) and
 // `render`/`shade --profile` print it; a failed run still prints its one error line only.
 #include <gtest/gtest.h>
@@ -11,7 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "brdfcl/material.hpp"
-#include "brdfcl/profile_version.hpp"
+#include "host/src/model/profile_version.hpp"
 #include "process.hpp"
 #include "support.hpp"
 

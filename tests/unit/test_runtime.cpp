@@ -13,7 +13,7 @@
 
 #include "brdfcl/error.hpp"
 #include "brdfcl/evaluator.hpp"
-#include "brdfcl/runtime.hpp"
+#include "host/src/runtime/opencl.hpp"
 #include "host/src/io/disk_cache.hpp"
 #include "process.hpp"
 #include "support.hpp"
@@ -117,17 +117,17 @@ TEST(Runtime, KernelsDefineNoVariadicMacros) {
 
 TEST(Runtime, ProgramCacheReturnsTheSameProgram) {
   Runtime rt;
-  auto a = rt.program("eval.cl", "-DBRDFCL_W=16");
-  auto b = rt.program("eval.cl", "-DBRDFCL_W=16");
+  auto a = rt.opencl().program("eval.cl", "-DBRDFCL_W=16");
+  auto b = rt.opencl().program("eval.cl", "-DBRDFCL_W=16");
   EXPECT_EQ(a(), b());
-  auto c = rt.program("eval.cl", "-DBRDFCL_W=8");
+  auto c = rt.opencl().program("eval.cl", "-DBRDFCL_W=8");
   EXPECT_NE(a(), c());
 }
 
 TEST(Runtime, BuildFailureCarriesTheBuildLog) {
   Runtime rt;
   try {
-    rt.program("eval.cl", "-DBRDFCL_W=3");  // lanes.h rejects widths other than 1, 4, 8, 16
+    rt.opencl().program("eval.cl", "-DBRDFCL_W=3");  // lanes.h rejects widths other than 1, 4, 8, 16
     FAIL() << "expected a build error";
   } catch (const Error& e) {
     std::string what = e.what();

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "brdfcl/evaluator.hpp"
-#include "brdfcl/gallery.hpp"
+#include "host/src/model/gallery.hpp"
 #include "reference/reference.hpp"
 #include "reference/sampling.hpp"
 #include "support.hpp"

@@ -41,7 +41,7 @@ class SoaBatch;
 // Thread safety. One Runtime may be shared by any number of threads (see runtime.hpp), and so
 // may one Evaluator: evaluate(), evaluateGrid() and sheenAlbedo() may run concurrently on the
 // same Evaluator (the table is baked once, under a lock; options() never changes). Each call
-// creates its own cl::Kernel and wraps only its caller's memory (the row kernels), or takes its
+// creates its own kernel object and wraps only its caller's memory (the row kernels), or takes its
 // planes from the evaluator's pool (scratch SoaBatches, e.g. evaluateArrays on float64; under a
 // lock, a set serves one call at a time), so concurrent calls never share kernel arguments or
 // memory and give bit-for-bit the results of the same calls made one after another. The pool
@@ -229,8 +229,6 @@ class SoaBatch {
   std::uint32_t* index_ = nullptr;
   bool inputsChanged_ = true;
   bool running_ = false;
-  cl::Event done_;    // the last command start() enqueued
-  cl::Event kernel_;  // the launch itself
   std::vector<brdfcl_material> packed_;
   std::vector<float> tableValues_;
   int tableSize_ = 2;

@@ -88,7 +88,7 @@ class DeviceSet;
 class Shader {
  public:
   Shader(Runtime& rt, const Scene& scene, EvalOptions options = {});
-  // Every device of the set shades a band of rows (brdfcl/device_set.hpp: byte-identical to one
+  // Every device of the set shades a band of rows (devices/device_set.hpp: byte-identical to one
   // device of the same kind); --ibl exact's integrator runs on the set's first device. The set
   // must outlive the Shader.
   Shader(DeviceSet& devices, const Scene& scene, EvalOptions options = {});

@@ -1,17 +1,11 @@
-// The OpenCL runtime: device selection, one context and in-order queue per device, and a
-// program cache keyed by (device, build options, source). Every failing OpenCL call throws
-// brdfcl::Error naming the call and its error code; a build failure carries the build log.
+// A compute device for brdfcl: chosen by index or name, it holds the device's context, queue and
+// compiled kernels out of sight (the OpenCL objects are private to the library). Every failing
+// device call throws brdfcl::Error naming the call and its error code.
 #pragma once
-#include <atomic>
-#include <CL/opencl.hpp>
-
+#include <cstddef>
 #include <cstdint>
-#include <functional>
-#include <map>
 #include <memory>
-#include <mutex>
 #include <string>
-#include <tuple>
 #include <vector>
 
 namespace brdfcl {
@@ -22,7 +16,7 @@ struct DeviceInfo {
   std::string platform;
   std::string type;  // CPU, GPU, ACCELERATOR, ...
   unsigned computeUnits;
-  std::string openclC;  // CL_DEVICE_OPENCL_C_VERSION
+  std::string openclC;  // the device's OpenCL C version
   std::uint64_t maxAlloc;
   std::uint64_t globalMem;
 };
@@ -30,71 +24,32 @@ struct DeviceInfo {
 // All devices of all platforms. Throws "no OpenCL platform found; ..." (exit 2) if none.
 std::vector<DeviceInfo> listDevices();
 
-// Name of an OpenCL error code, e.g. "CL_OUT_OF_RESOURCES".
-const char* clErrorName(int code);
-
-// Throws brdfcl::Error for a cl::Error caught from the C++ bindings: "OpenCL call clXxx failed:
-// CL_NAME (code)", with the build log for a cl::BuildError. `what` says what brdfcl was doing.
-[[noreturn]] void rethrowOpenCL(const std::string& what);
-
 // Thread safety. One Runtime may be shared by any number of threads, each evaluating through
-// its own (or a shared) Evaluator: program() guards its cache with a mutex (concurrent first
-// requests for one variant wait for a single build); device(), context(), info() and
-// standardOption() are fixed after construction. queue() is one in-order cl::CommandQueue that
-// every thread enqueues on; OpenCL makes enqueueing thread-safe, but a cl::Kernel's arguments
-// are not, so every brdfcl launch path creates its own cl::Kernel (SoaBatch per batch,
-// evaluateGrid() and bakeSheenAlbedo() per call) and callers using queue() directly must do the
-// same. A blocking read or finish() on the shared queue may also wait for other threads' work,
-// which costs time, never correctness. Construction and destruction are not concurrent-safe:
-// destroy the Runtime only after every thread is done with it.
+// its own (or a shared) Evaluator: its kernel cache is guarded by a mutex (concurrent first
+// requests for one variant wait for a single build), and info() and standardOption() are fixed
+// after construction. All threads enqueue on the one in-order queue of the device, so a wait may
+// also wait for other threads' work, which costs time, never correctness. Construction and
+// destruction are not concurrent-safe: destroy the Runtime only after every thread is done with it.
 class Runtime {
  public:
   // selector: "" (then $BRDFCL_DEVICE, then device 0), an index, or a name substring.
   explicit Runtime(const std::string& selector = "");
+  ~Runtime();
+  Runtime(const Runtime&) = delete;
+  Runtime& operator=(const Runtime&) = delete;
 
-  const cl::Device& device() const { return device_; }
-  const cl::Context& context() const { return context_; }
-  cl::CommandQueue& queue() { return queue_; }
-  const DeviceInfo& info() const { return info_; }
-
-  // Builds (or returns from the cache) the program for an embedded kernel file, e.g. "eval.cl",
-  // with its #include "..." lines resolved from kernels/. `defines` are extra -D options.
-  cl::Program program(const std::string& kernelFile, const std::string& defines = "");
+  const DeviceInfo& info() const;
   // Programs this Runtime built from binaries in brdfcl's disk cache rather than from source.
-  std::size_t programsFromDiskCache() const { return fromDisk_; }
-
+  std::size_t programsFromDiskCache() const;
   // The -cl-std option picked from the device's OpenCL C version.
-  const std::string& standardOption() const { return clStd_; }
+  const std::string& standardOption() const;
+
+  // The device's OpenCL objects, for the library's own modules (host/src/runtime/opencl.hpp).
+  struct OpenCL;
+  OpenCL& opencl() const { return *cl_; }
 
  private:
-  cl::Device device_;
-  cl::Context context_;
-  cl::CommandQueue queue_;
-  DeviceInfo info_;
-  std::string clStd_;
-  std::string mathOptions_;  // -cl-fp32-correctly-rounded-divide-sqrt where the device offers it
-  std::mutex cacheMutex_;
-  std::map<std::pair<std::string, std::string>, cl::Program> cache_;  // (options, source) -> program
-  std::atomic<std::size_t> fromDisk_{0};
+  std::unique_ptr<OpenCL> cl_;
 };
-
-// How the batch kernels (eval.cl) lay work on a device: samples per work-item (BRDFCL_W) and
-// work-items per work-group. CPUs: 16 lanes a work-item, 512 a group (the compiler does not
-// vectorize across work-items through pow/exp, so the lanes are the vectors; docs/performance.md).
-// GPUs and everything else: 1 lane, 128 work-items (a GPU's SIMD runs across work-items).
-// $BRDFCL_LANES = 1, 4, 8 or 16 forces the lane width on any device, for tests and tuning;
-// another value throws "BRDFCL_LANES=<v> is not supported; use 1, 4, 8 or 16".
-struct LaneShape {
-  int lanes = 16;
-  std::size_t groupSize = 512;  // before the kernel's own limits (groupSizeFor)
-};
-LaneShape laneShape(const DeviceInfo& device);
-
-// The work-group size to launch `kernel` with: shape.groupSize, at most the kernel's limit on
-// the device, and on GPUs a multiple of the kernel's preferred work-group size multiple.
-std::size_t groupSizeFor(const LaneShape& shape, const cl::Kernel& kernel, const cl::Device& device);
-
-// The full source of an embedded kernel file with its includes expanded (for tests and tools).
-std::string kernelSource(const std::string& kernelFile);
 
 }  // namespace brdfcl

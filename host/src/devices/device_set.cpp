@@ -1,6 +1,6 @@
 // Device lists (--device all, --device 0,2) and the DeviceSet that splits a batch across them
 // in proportion to measured speed, one host thread a device.
-#include "brdfcl/device_set.hpp"
+#include "devices/device_set.hpp"
 
 #include <algorithm>
 #include <chrono>

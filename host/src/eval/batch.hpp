@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "brdfcl/evaluator.hpp"
-#include "brdfcl/runtime.hpp"
+#include "runtime/opencl.hpp"
 
 namespace brdfcl {
 

@@ -18,6 +18,7 @@
 #include "eval/batch.hpp"
 #include "model/pack.hpp"
 #include "model/engine_tables.hpp"
+#include "runtime/opencl.hpp"
 
 namespace brdfcl {
 
@@ -183,9 +184,9 @@ Evaluator::Batch Evaluator::prepare(const std::vector<MaterialParams>& materials
   b.shape = laneShape(rt_.info());
   try {
     // One material: every lane reads the same record (no gathers); indices are still checked.
-    b.program = rt_.program("eval.cl", materialDefines(options_, features) + fmt::format(" -DBRDFCL_W={}", b.shape.lanes) +
+    b.program = rt_.opencl().program("eval.cl", materialDefines(options_, features) + fmt::format(" -DBRDFCL_W={}", b.shape.lanes) +
                                            (materials.size() == 1 ? " -DBRDFCL_ONE_MATERIAL=1" : ""));
-    const auto& ctx = rt_.context();
+    const auto& ctx = rt_.opencl().context();
     b.materials = cl::Buffer(ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, b.packed.size() * sizeof(brdfcl_material),
                              b.packed.data());
     b.tableBuffer = cl::Buffer(ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, b.table.size() * 4, b.table.data());
@@ -199,6 +200,8 @@ struct SoaBatch::Device {
   Evaluator::Batch batch;
   cl::Kernel kernel;
   std::size_t local = 1;  // work-group size used when a launch is large enough
+  cl::Event done;         // the last command start() enqueued
+  cl::Event launch;       // the launch itself
 };
 
 SoaBatch::SoaBatch(Evaluator& evaluator, const std::vector<MaterialParams>& materials, std::size_t capacity)
@@ -219,7 +222,7 @@ SoaBatch::SoaBatch(Evaluator& evaluator, const std::vector<MaterialParams>& mate
   try {
     auto& d = *device_;
     d.kernel = cl::Kernel(d.batch.program, "eval_samples");
-    d.local = groupSizeFor(d.batch.shape, d.kernel, ev_.rt_.device());
+    d.local = groupSizeFor(d.batch.shape, d.kernel, ev_.rt_.opencl().device());
   } catch (const cl::Error&) {
     rethrowOpenCL("creating the batch kernel");
   }
@@ -228,7 +231,7 @@ SoaBatch::SoaBatch(Evaluator& evaluator, const std::vector<MaterialParams>& mate
   // and no batch writes past its capacity, so their padding is still zero.
   allocated_ = roundUp(capacity_, kLanes * device_->local);
   if (pooled_) set_ = ev_.takePlanes(allocated_);
-  if (!set_) set_ = std::make_unique<Evaluator::Planes>(ev_.rt_.context(), allocated_);
+  if (!set_) set_ = std::make_unique<Evaluator::Planes>(ev_.rt_.opencl().context(), allocated_);
   for (int k = 0; k < 9; ++k) planes_[k] = set_->host[k];
   index_ = set_->index;
   try {
@@ -289,7 +292,7 @@ void SoaBatch::run() {
 // batch while this one runs; finish() waits for the last command.
 void SoaBatch::start() {
   if (count_ == 0) return;
-  auto& q = ev_.rt_.queue();
+  auto& q = ev_.rt_.opencl().queue();
   auto& d = *device_;
   try {
     if (inputsChanged_) {
@@ -309,10 +312,10 @@ void SoaBatch::start() {
     const bool grouped = global >= 8 * d.local && roundUp(global, d.local) * lanes <= allocated_;
     if (grouped) global = roundUp(global, d.local);
     q.enqueueNDRangeKernel(d.kernel, cl::NullRange, cl::NDRange(global), grouped ? cl::NDRange(d.local) : cl::NullRange,
-                           nullptr, &kernel_);
+                           nullptr, &d.launch);
     for (int k = 6; k < 9; ++k) {
       void* p = q.enqueueMapBuffer(set_->buffers[k], CL_FALSE, CL_MAP_READ, 0, allocated_ * 4);
-      q.enqueueUnmapMemObject(set_->buffers[k], p, nullptr, k == 8 ? &done_ : nullptr);
+      q.enqueueUnmapMemObject(set_->buffers[k], p, nullptr, k == 8 ? &d.done : nullptr);
     }
     q.flush();
     running_ = true;
@@ -325,17 +328,18 @@ void SoaBatch::finish() {
   if (!running_) return;
   running_ = false;
   try {
-    done_.wait();
+    device_->done.wait();
   } catch (const cl::Error&) {
     rethrowOpenCL("evaluating samples");
   }
 }
 
 double SoaBatch::lastKernelSeconds() const {
-  if (kernel_() == nullptr) return 0;
+  if (!device_ || device_->launch() == nullptr) return 0;
+  const cl::Event& launch = device_->launch;
   try {
-    const auto begin = kernel_.getProfilingInfo<CL_PROFILING_COMMAND_START>();
-    const auto end = kernel_.getProfilingInfo<CL_PROFILING_COMMAND_END>();
+    const auto begin = launch.getProfilingInfo<CL_PROFILING_COMMAND_START>();
+    const auto end = launch.getProfilingInfo<CL_PROFILING_COMMAND_END>();
     return double(end - begin) * 1e-9;
   } catch (const cl::Error&) {
     rethrowOpenCL("reading the kernel's profiling times");

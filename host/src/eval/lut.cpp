@@ -27,6 +27,7 @@
 #include "eval/sheen_albedo_bake.hpp"
 #include "io/option_style.hpp"
 #include "model/pack.hpp"
+#include "runtime/opencl.hpp"
 
 namespace brdfcl {
 
@@ -58,8 +59,8 @@ std::vector<float> bakeGgxDfg(Runtime& rt, std::size_t size, int nodesPerPanel) 
   try {
     // 16 lanes on every device, whatever laneShape() says: the lanes sum the phi nodes, so the
     // width sets the order of the sum and with it the last bits of the table (and its cache key).
-    auto program = rt.program("lut.cl", materialDefines(o, f) + " -DBRDFCL_W=16");
-    const auto& ctx = rt.context();
+    auto program = rt.opencl().program("lut.cl", materialDefines(o, f) + " -DBRDFCL_W=16");
+    const auto& ctx = rt.opencl().context();
     auto ro = CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR;
     auto grade = kThetaGrade;
     cl::Buffer bg(ctx, ro, grade.size() * 4, grade.data());
@@ -69,9 +70,9 @@ std::vector<float> bakeGgxDfg(Runtime& rt, std::size_t size, int nodesPerPanel) 
     cl::Buffer bout(ctx, CL_MEM_WRITE_ONLY, out.size() * 4);
     cl::KernelFunctor<int, cl::Buffer, int, cl::Buffer, cl::Buffer, int, cl::Buffer, cl::Buffer, int, cl::Buffer> bake(
         program, "bake_ggx_dfg");
-    bake(cl::EnqueueArgs(rt.queue(), cl::NDRange(size, size)), int(size), bg, int(grade.size()), btn, btw,
+    bake(cl::EnqueueArgs(rt.opencl().queue(), cl::NDRange(size, size)), int(size), bg, int(grade.size()), btn, btw,
          int(tn.size()), bpt, bpw, int(pt.size()), bout);
-    rt.queue().enqueueReadBuffer(bout, CL_TRUE, 0, out.size() * 4, out.data());
+    rt.opencl().queue().enqueueReadBuffer(bout, CL_TRUE, 0, out.size() * 4, out.data());
   } catch (const cl::Error&) {
     rethrowOpenCL("baking the ggx-dfg LUT");
   }

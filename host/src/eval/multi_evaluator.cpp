@@ -5,7 +5,7 @@
 
 #include <fmt/format.h>
 
-#include "brdfcl/device_set.hpp"
+#include "devices/device_set.hpp"
 #include "brdfcl/error.hpp"
 
 namespace brdfcl {

@@ -11,6 +11,7 @@
 #include "brdfcl/error.hpp"
 #include "brdfcl/evaluator.hpp"
 #include "eval/batch.hpp"
+#include "runtime/opencl.hpp"
 
 namespace brdfcl {
 
@@ -50,9 +51,9 @@ class RowLaunches {
  public:
   // The kernel `name` (whole groups of lanes) and `name`_tail (the partial group at the end).
   RowLaunches(Runtime& rt, const cl::Program& program, const std::string& name, const LaneShape& shape)
-      : ctx_(rt.context()), q_(rt.queue()), cpu_(rt.info().type == "CPU"), kernel_(program, name.c_str()),
+      : ctx_(rt.opencl().context()), q_(rt.opencl().queue()), cpu_(rt.info().type == "CPU"), kernel_(program, name.c_str()),
         tail_(program, (name + "_tail").c_str()), lanes_(std::size_t(shape.lanes)),
-        local_(groupSizeFor(shape, kernel_, rt.device())) {}
+        local_(groupSizeFor(shape, kernel_, rt.opencl().device())) {}
   ~RowLaunches() {
     try {
       q_.finish();

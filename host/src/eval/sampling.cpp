@@ -13,6 +13,7 @@
 #include "eval/batch.hpp"
 #include "eval/splitmix64.hpp"
 #include "model/pack.hpp"
+#include "runtime/opencl.hpp"
 
 namespace brdfcl {
 
@@ -58,8 +59,8 @@ SamplingBatch makeSamplingBatch(Runtime& rt, const EvalOptions& options, const s
   const std::vector<float>& e = albedo ? albedo->values : dummy;
   s.albedoSize = albedo ? int(albedo->width) : 2;
   try {
-    s.program = rt.program("sample.cl", materialDefines(options, featuresOf(materials, options.profile)));
-    const auto& ctx = rt.context();
+    s.program = rt.opencl().program("sample.cl", materialDefines(options, featuresOf(materials, options.profile)));
+    const auto& ctx = rt.opencl().context();
     s.materials = cl::Buffer(ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, packed.size() * sizeof(brdfcl_material),
                              const_cast<brdfcl_material*>(packed.data()));
     s.table = cl::Buffer(ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, table.size() * 4, const_cast<float*>(table.data()));
@@ -96,8 +97,8 @@ void Evaluator::sample(const std::vector<MaterialParams>& materials, const std::
   const std::size_t chunk = std::max<std::size_t>(1, std::min(launchLimit(), std::size_t(rt_.info().maxAlloc) / 28));
   try {
     cl::Kernel kernel(s.program, "sample_rows");
-    auto& q = rt_.queue();
-    const auto& ctx = rt_.context();
+    auto& q = rt_.opencl().queue();
+    const auto& ctx = rt_.opencl().context();
     for (std::size_t first = 0; first < count; first += chunk) {
       const std::size_t n = std::min(chunk, count - first);
       cl::Buffer V = input(ctx, view + 3 * first, 3 * n), U = input(ctx, u + 3 * first, 3 * n);
@@ -154,8 +155,8 @@ void Evaluator::pdf(const std::vector<MaterialParams>& materials, const Samples&
   const std::size_t chunk = std::max<std::size_t>(1, std::min(launchLimit(), std::size_t(rt_.info().maxAlloc) / 12));
   try {
     cl::Kernel kernel(s.program, "pdf_rows");
-    auto& q = rt_.queue();
-    const auto& ctx = rt_.context();
+    auto& q = rt_.opencl().queue();
+    const auto& ctx = rt_.opencl().context();
     for (std::size_t first = 0; first < count; first += chunk) {
       const std::size_t n = std::min(chunk, count - first);
       cl::Buffer L = input(ctx, samples.L.data() + 3 * first, 3 * n), V = input(ctx, samples.V.data() + 3 * first, 3 * n);

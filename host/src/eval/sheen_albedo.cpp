@@ -11,6 +11,7 @@
 #include "eval/sheen_albedo_bake.hpp"
 #include "io/disk_cache.hpp"
 #include "model/pack.hpp"
+#include "runtime/opencl.hpp"
 
 namespace brdfcl {
 
@@ -74,8 +75,8 @@ SheenAlbedoTable bakeSheenAlbedoFrom(Runtime& rt, const std::string& kernelFile,
   try {
     // 16 lanes on every device, whatever laneShape() says: the lanes sum the phi nodes, so the
     // width sets the order of the sum and with it the last bits of the table (and its cache key).
-    auto program = rt.program(kernelFile, materialDefines(o, f) + " -DBRDFCL_W=16");
-    const auto& ctx = rt.context();
+    auto program = rt.opencl().program(kernelFile, materialDefines(o, f) + " -DBRDFCL_W=16");
+    const auto& ctx = rt.opencl().context();
     auto ro = CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR;
     cl::Buffer bu(ctx, ro, u.size() * 4, u.data()), buw(ctx, ro, uw.size() * 4, uw.data());
     cl::Buffer bpc(ctx, ro, pc.size() * 4, pc.data()), bps(ctx, ro, ps.size() * 4, ps.data());
@@ -83,9 +84,9 @@ SheenAlbedoTable bakeSheenAlbedoFrom(Runtime& rt, const std::string& kernelFile,
     cl::Buffer out(ctx, CL_MEM_WRITE_ONLY, table.values.size() * 4);
     cl::KernelFunctor<int, cl::Buffer, cl::Buffer, int, cl::Buffer, cl::Buffer, cl::Buffer, int, cl::Buffer> bake(
         program, "bake_sheen_albedo");
-    bake(cl::EnqueueArgs(rt.queue(), cl::NDRange(size, size)), int(size), bu, buw, int(u.size()), bpc, bps, bpw,
+    bake(cl::EnqueueArgs(rt.opencl().queue(), cl::NDRange(size, size)), int(size), bu, buw, int(u.size()), bpc, bps, bpw,
          int(pc.size()), out);
-    rt.queue().enqueueReadBuffer(out, CL_TRUE, 0, table.values.size() * 4, table.values.data());
+    rt.opencl().queue().enqueueReadBuffer(out, CL_TRUE, 0, table.values.size() * 4, table.values.data());
   } catch (const cl::Error&) {
     rethrowOpenCL("baking the sheen albedo table");
   }

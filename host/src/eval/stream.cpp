@@ -9,7 +9,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "brdfcl/device_set.hpp"
+#include "devices/device_set.hpp"
 #include "brdfcl/error.hpp"
 
 namespace brdfcl {

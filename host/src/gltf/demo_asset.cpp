@@ -1,7 +1,7 @@
 // writeDemoAsset: the built-in sphere sweep as a .glb, assembled here (JSON with nlohmann, GLB
 // container by hand) so that every extension object is written exactly as the specs spell it.
-// Geometry and texture designs are described in brdfcl/demo_asset.hpp.
-#include "brdfcl/demo_asset.hpp"
+// Geometry and texture designs are described in gltf/demo_asset.hpp.
+#include "gltf/demo_asset.hpp"
 
 #include <algorithm>
 #include <array>
@@ -251,19 +251,12 @@ json material(int row, int col, int cloth, int flakes, int brushed) {
 
 void appendU32(std::string& s, std::uint32_t v) { s.append(reinterpret_cast<const char*>(&v), 4); }
 
-}  // namespace
+// The sphere's vertex and index accessors, all spheres share them.
+struct SphereAccessors {
+  int position, normal, tangent, uv, indices;
+};
 
-void writeDemoAsset(const std::string& path) {
-  const std::string shown = detail::printable(path, 300);
-  json gltf = {{"asset", {{"version", "2.0"}, {"generator", "brdfcl writeDemoAsset"}}},
-               {"extensionsUsed",
-                {"KHR_materials_sheen", "KHR_materials_clearcoat", "KHR_materials_anisotropy", "KHR_texture_transform",
-                 "KHR_lights_punctual"}},
-               {"scene", 0},
-               {"bufferViews", json::array()},
-               {"accessors", json::array()}};
-  Bin bin;
-
+SphereAccessors sphereAccessors(json& gltf, Bin& bin) {
   const SphereMesh sphere = sphereMesh();
   const std::size_t vertices = sphere.positions.size() / 3;
   const int position = accessor(gltf, bin.view(gltf, sphere.positions.data(), sphere.positions.size() * 4, kArrayBuffer),
@@ -285,24 +278,11 @@ void writeDemoAsset(const std::string& path) {
   const int indices = accessor(gltf, bin.view(gltf, sphere.indices.data(), sphere.indices.size() * 2, kElementArrayBuffer),
                                kUnsignedShort, sphere.indices.size(), "SCALAR");
 
-  gltf["samplers"] = {
-      {{"magFilter", kLinear}, {"minFilter", kLinearMipmapLinear}, {"wrapS", kRepeat}, {"wrapT", kRepeat}},
-      // Flakes stay crisp cells when magnified.
-      {{"magFilter", kNearest}, {"minFilter", kLinearMipmapLinear}, {"wrapS", kRepeat}, {"wrapT", kRepeat}},
-      // The brushing field does not tile; clamping keeps the seam from mixing its two ends.
-      {{"magFilter", kLinear}, {"minFilter", kLinearMipmapLinear}, {"wrapS", kClampToEdge}, {"wrapT", kClampToEdge}}};
-  auto addTexture = [&](const char* name, const std::vector<std::uint8_t>& texels, int size, int channels, int sampler) {
-    const std::string png = detail::encodePng(texels.data(), size, size, channels);
-    if (png.empty()) throw Error("cannot write '" + shown + "': the PNG encoder failed (out of memory?)");
-    gltf["images"].push_back({{"name", name}, {"mimeType", "image/png"}, {"bufferView", bin.view(gltf, png.data(), png.size())}});
-    gltf["textures"].push_back({{"name", name}, {"source", gltf["images"].size() - 1}, {"sampler", sampler}});
-    return int(gltf["textures"].size()) - 1;
-  };
-  const int cloth = addTexture("cloth", clothTexels(), kClothSize, 4, 0);
-  const int flakes = addTexture("flakes", flakeTexels(), kFlakeSize, 3, 1);
-  const int brushed = addTexture("brushed", brushedTexels(), kBrushedSize, 3, 2);
+  return {position, normal, tangent, uv, indices};
+}
 
-  json roots = json::array();
+// The 6 x 6 spheres, a material, mesh and node each; their nodes join `roots`.
+void addSpheres(json& gltf, json& roots, const SphereAccessors& a, int cloth, int flakes, int brushed) {
   for (int row = 0; row < 6; ++row)
     for (int col = 0; col < 6; ++col) {
       gltf["materials"].push_back(material(row, col, cloth, flakes, brushed));
@@ -311,15 +291,18 @@ void writeDemoAsset(const std::string& path) {
       gltf["meshes"].push_back(
           {{"name", "sphere r" + std::to_string(row) + " c" + std::to_string(col)},
            {"primitives",
-            {{{"attributes", {{"POSITION", position}, {"NORMAL", normal}, {"TANGENT", tangent}, {"TEXCOORD_0", uv}}},
-              {"indices", indices},
+            {{{"attributes", {{"POSITION", a.position}, {"NORMAL", a.normal}, {"TANGENT", a.tangent}, {"TEXCOORD_0", a.uv}}},
+              {"indices", a.indices},
               {"material", index}}}}});
       gltf["nodes"].push_back({{"name", "sphere r" + std::to_string(row) + " c" + std::to_string(col)},
                                {"mesh", index},
                                {"translation", {(col - 2.5) * 1.05, (2.5 - row) * 1.05, 0.0}}});
       roots.push_back(index);
     }
+}
 
+// The camera, the key and the fill light; their nodes join `roots`.
+void addCameraAndLights(json& gltf, json& roots) {
   gltf["cameras"] = {{{"name", "camera"},
                       {"type", "perspective"},
                       {"perspective", {{"yfov", 30.0 * kPi / 180.0}, {"aspectRatio", 1.0}, {"znear", 0.1}}}}};
@@ -339,14 +322,14 @@ void writeDemoAsset(const std::string& path) {
                            {"translation", {-6.0, 2.0, 6.0}},
                            {"extensions", {{"KHR_lights_punctual", {{"light", 1}}}}}});
   roots.push_back(gltf["nodes"].size() - 1);
-  gltf["scenes"] = {{{"name", "spheres"}, {"nodes", roots}}};
-  gltf["buffers"] = {{{"byteLength", bin.data().size()}}};
+}
 
-  // GLB: 12-byte header, then the JSON chunk padded with spaces and the BIN chunk padded with
-  // zeros, both to 4 bytes.
+// GLB: 12-byte header, then the JSON chunk padded with spaces and the BIN chunk padded with
+// zeros, both to 4 bytes.
+std::string glbBytes(const json& gltf, const std::string& bin) {
   std::string text = gltf.dump();
   text.resize((text.size() + 3) & ~std::size_t(3), ' ');
-  std::string binary = bin.data();
+  std::string binary = bin;
   binary.resize((binary.size() + 3) & ~std::size_t(3), '\0');
   std::string glb;
   glb.reserve(12 + 8 + text.size() + 8 + binary.size());
@@ -359,7 +342,48 @@ void writeDemoAsset(const std::string& path) {
   appendU32(glb, std::uint32_t(binary.size()));
   appendU32(glb, 0x004E4942u);  // "BIN\0"
   glb += binary;
+  return glb;
+}
 
+}  // namespace
+
+void writeDemoAsset(const std::string& path) {
+  const std::string shown = detail::printable(path, 300);
+  json gltf = {{"asset", {{"version", "2.0"}, {"generator", "brdfcl writeDemoAsset"}}},
+               {"extensionsUsed",
+                {"KHR_materials_sheen", "KHR_materials_clearcoat", "KHR_materials_anisotropy", "KHR_texture_transform",
+                 "KHR_lights_punctual"}},
+               {"scene", 0},
+               {"bufferViews", json::array()},
+               {"accessors", json::array()}};
+  Bin bin;
+
+  const SphereAccessors accessors = sphereAccessors(gltf, bin);
+
+  gltf["samplers"] = {
+      {{"magFilter", kLinear}, {"minFilter", kLinearMipmapLinear}, {"wrapS", kRepeat}, {"wrapT", kRepeat}},
+      // Flakes stay crisp cells when magnified.
+      {{"magFilter", kNearest}, {"minFilter", kLinearMipmapLinear}, {"wrapS", kRepeat}, {"wrapT", kRepeat}},
+      // The brushing field does not tile; clamping keeps the seam from mixing its two ends.
+      {{"magFilter", kLinear}, {"minFilter", kLinearMipmapLinear}, {"wrapS", kClampToEdge}, {"wrapT", kClampToEdge}}};
+  auto addTexture = [&](const char* name, const std::vector<std::uint8_t>& texels, int size, int channels, int sampler) {
+    const std::string png = detail::encodePng(texels.data(), size, size, channels);
+    if (png.empty()) throw Error("cannot write '" + shown + "': the PNG encoder failed (out of memory?)");
+    gltf["images"].push_back({{"name", name}, {"mimeType", "image/png"}, {"bufferView", bin.view(gltf, png.data(), png.size())}});
+    gltf["textures"].push_back({{"name", name}, {"source", gltf["images"].size() - 1}, {"sampler", sampler}});
+    return int(gltf["textures"].size()) - 1;
+  };
+  const int cloth = addTexture("cloth", clothTexels(), kClothSize, 4, 0);
+  const int flakes = addTexture("flakes", flakeTexels(), kFlakeSize, 3, 1);
+  const int brushed = addTexture("brushed", brushedTexels(), kBrushedSize, 3, 2);
+
+  json roots = json::array();
+  addSpheres(gltf, roots, accessors, cloth, flakes, brushed);
+  addCameraAndLights(gltf, roots);
+  gltf["scenes"] = {{{"name", "spheres"}, {"nodes", roots}}};
+  gltf["buffers"] = {{{"byteLength", bin.data().size()}}};
+
+  const std::string glb = glbBytes(gltf, bin.data());
   writeOutput(path, glb.data(), glb.size());
 }
 

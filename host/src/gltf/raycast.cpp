@@ -137,82 +137,118 @@ GBuffer Raycaster::trace(const View& view, int width, int height, float jx, floa
   return g;
 }
 
-void Raycaster::trace(const View& view, int width, int height, float jx, float jy, GBuffer& g) const {
-  if (width <= 0 || height <= 0)
-    throw Error("image size " + std::to_string(width) + "x" + std::to_string(height) + ": expected positive sizes");
-  g.width = width;
-  g.height = height;
-  g.camera = gbufferCamera(view);
-  const std::size_t n = g.pixelCount();
+namespace {
+// Runs `work` on every core (two threads at least), this thread included, and joins them.
+template <class Work>
+void onEveryCore(const Work& work) {
   const unsigned threads = std::max(2u, std::thread::hardware_concurrency());
-  auto parallel = [threads](const auto& work) {
-    std::vector<std::thread> pool;
-    for (unsigned k = 1; k < threads; ++k) pool.emplace_back(work);
-    work();
-    for (std::thread& th : pool) th.join();
-  };
-  // A 1080p G-buffer is 270 MB of zeroed pages: channels allocated on every core, so that their
-  // page faults and zeroing do not all fall on one.
+  std::vector<std::thread> pool;
+  for (unsigned k = 1; k < threads; ++k) pool.emplace_back(work);
+  work();
+  for (std::thread& th : pool) th.join();
+}
+
+// Sizes and zeroes every channel of `g` for n pixels. A 1080p G-buffer is 270 MB of zeroed pages:
+// channels allocated on every core, so that their page faults and zeroing do not all fall on one.
+void zeroChannels(GBuffer& g, std::size_t n) {
   const std::array<std::pair<std::vector<float>*, int>, 17> channels{{
       {&g.P, 3}, {&g.N, 3}, {&g.T, 3}, {&g.baseColor, 3}, {&g.emissive, 3}, {&g.sheenColor, 3}, {&g.clearcoatN, 3},
       {&g.V, 3}, {&g.metallic, 1}, {&g.roughness, 1}, {&g.mask, 1}, {&g.sheenRoughness, 1}, {&g.clearcoat, 1},
       {&g.clearcoatRoughness, 1}, {&g.anisotropyStrength, 1}, {&g.anisotropyRotation, 1}, {&g.occlusion, 1}}};
   std::atomic<std::size_t> nextChannel{0};
-  parallel([&] {
+  onEveryCore([&] {
     for (std::size_t c; (c = nextChannel.fetch_add(1)) < channels.size();)
       channels[c].first->assign(channels[c].second * n, 0.0f);
   });
+}
 
-  const State& st = *s_;
+// The primary rays of the 4x4 pixels from (x0, y0) into `rh`, their unit directions into `dirs`;
+// `valid` marks the pixels inside the image.
+void primaryRays(const View& view, int width, int height, float jx, float jy, int x0, int y0, RTCRayHit16& rh,
+                 int valid[16], float dirs[16][3]) {
   const double aspect = view.aspect;
   const double ext = view.orthographic ? view.halfHeight : view.tanHalfFovY;
   const auto& f = view.forward;
   const auto& r = view.right;
   const auto& u = view.up;
   const float inf = std::numeric_limits<float>::infinity();
+  for (int lane = 0; lane < 16; ++lane) {
+    const int x = x0 + lane % 4, y = y0 + lane / 4;
+    valid[lane] = x < width && y < height ? -1 : 0;
+    const double s = 2.0 * (x + jx) / width - 1.0, t = 1.0 - 2.0 * (y + jy) / height;
+    double o[3], d[3];
+    for (int k = 0; k < 3; ++k) {
+      if (view.orthographic) {
+        o[k] = view.position[k] + s * ext * aspect * r[k] + t * ext * u[k];
+        d[k] = f[k];
+      } else {
+        o[k] = view.position[k];
+        d[k] = f[k] + s * ext * aspect * r[k] + t * ext * u[k];
+      }
+    }
+    const double len = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    for (int k = 0; k < 3; ++k) {
+      d[k] /= len;
+      dirs[lane][k] = static_cast<float>(d[k]);
+    }
+    // Distances along the ray to the near and far planes, which are perpendicular to forward.
+    const double cosF = d[0] * f[0] + d[1] * f[1] + d[2] * f[2];
+    rh.ray.org_x[lane] = static_cast<float>(o[0]);
+    rh.ray.org_y[lane] = static_cast<float>(o[1]);
+    rh.ray.org_z[lane] = static_cast<float>(o[2]);
+    rh.ray.dir_x[lane] = dirs[lane][0];
+    rh.ray.dir_y[lane] = dirs[lane][1];
+    rh.ray.dir_z[lane] = dirs[lane][2];
+    rh.ray.tnear[lane] = static_cast<float>(std::max(0.0, view.znear / cosF));
+    rh.ray.tfar[lane] = view.zfar > 0.0 ? static_cast<float>(view.zfar / cosF) : inf;
+    rh.ray.time[lane] = 0.0f;
+    rh.ray.mask[lane] = 0xFFFFFFFFu;
+    rh.ray.id[lane] = static_cast<unsigned>(lane);
+    rh.ray.flags[lane] = 0;
+    rh.hit.geomID[lane] = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.primID[lane] = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0][lane] = RTC_INVALID_GEOMETRY_ID;
+  }
+}
+
+// Pixel i of `g` holds the surface `sp` (V is written by the caller).
+void storeSurface(GBuffer& g, std::size_t i, const SurfacePoint& sp) {
+  for (int k = 0; k < 3; ++k) {
+    g.P[3 * i + k] = sp.P[k];
+    g.N[3 * i + k] = sp.N[k];
+    g.T[3 * i + k] = sp.T[k];
+    g.baseColor[3 * i + k] = sp.baseColor[k];
+    g.emissive[3 * i + k] = sp.emissive[k];
+    g.sheenColor[3 * i + k] = sp.sheenColor[k];
+    g.clearcoatN[3 * i + k] = sp.clearcoatN[k];
+  }
+  g.mask[i] = 1.0f;
+  g.metallic[i] = sp.metallic;
+  g.roughness[i] = sp.roughness;
+  g.sheenRoughness[i] = sp.sheenRoughness;
+  g.clearcoat[i] = sp.clearcoat;
+  g.clearcoatRoughness[i] = sp.clearcoatRoughness;
+  g.anisotropyStrength[i] = sp.anisotropyStrength;
+  g.anisotropyRotation[i] = sp.anisotropyRotation;
+  g.occlusion[i] = sp.occlusion;
+}
+}  // namespace
+
+void Raycaster::trace(const View& view, int width, int height, float jx, float jy, GBuffer& g) const {
+  if (width <= 0 || height <= 0)
+    throw Error("image size " + std::to_string(width) + "x" + std::to_string(height) + ": expected positive sizes");
+  g.width = width;
+  g.height = height;
+  g.camera = gbufferCamera(view);
+  zeroChannels(g, g.pixelCount());
+  const State& st = *s_;
 
   // One packet of 4x4 neighbouring pixels: coherent primary rays traverse the BVH together.
   auto traceBlock = [&](RayContext& rc, int x0, int y0) {
     alignas(64) RTCRayHit16 rh;
     alignas(64) int valid[16];
     float dirs[16][3];
-    for (int lane = 0; lane < 16; ++lane) {
-      const int x = x0 + lane % 4, y = y0 + lane / 4;
-      valid[lane] = x < width && y < height ? -1 : 0;
-      const double s = 2.0 * (x + jx) / width - 1.0, t = 1.0 - 2.0 * (y + jy) / height;
-      double o[3], d[3];
-      for (int k = 0; k < 3; ++k) {
-        if (view.orthographic) {
-          o[k] = view.position[k] + s * ext * aspect * r[k] + t * ext * u[k];
-          d[k] = f[k];
-        } else {
-          o[k] = view.position[k];
-          d[k] = f[k] + s * ext * aspect * r[k] + t * ext * u[k];
-        }
-      }
-      const double len = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-      for (int k = 0; k < 3; ++k) {
-        d[k] /= len;
-        dirs[lane][k] = static_cast<float>(d[k]);
-      }
-      // Distances along the ray to the near and far planes, which are perpendicular to forward.
-      const double cosF = d[0] * f[0] + d[1] * f[1] + d[2] * f[2];
-      rh.ray.org_x[lane] = static_cast<float>(o[0]);
-      rh.ray.org_y[lane] = static_cast<float>(o[1]);
-      rh.ray.org_z[lane] = static_cast<float>(o[2]);
-      rh.ray.dir_x[lane] = dirs[lane][0];
-      rh.ray.dir_y[lane] = dirs[lane][1];
-      rh.ray.dir_z[lane] = dirs[lane][2];
-      rh.ray.tnear[lane] = static_cast<float>(std::max(0.0, view.znear / cosF));
-      rh.ray.tfar[lane] = view.zfar > 0.0 ? static_cast<float>(view.zfar / cosF) : inf;
-      rh.ray.time[lane] = 0.0f;
-      rh.ray.mask[lane] = 0xFFFFFFFFu;
-      rh.ray.id[lane] = static_cast<unsigned>(lane);
-      rh.ray.flags[lane] = 0;
-      rh.hit.geomID[lane] = RTC_INVALID_GEOMETRY_ID;
-      rh.hit.primID[lane] = RTC_INVALID_GEOMETRY_ID;
-      rh.hit.instID[0][lane] = RTC_INVALID_GEOMETRY_ID;
-    }
+    primaryRays(view, width, height, jx, jy, x0, y0, rh, valid, dirs);
     rtcIntersect16(valid, st.scene, &rc.embree, &rh);
 
     for (int lane = 0; lane < 16; ++lane) {
@@ -235,24 +271,7 @@ void Raycaster::trace(const View& view, int width, int height, float jx, float j
           if (el > 0.0 && std::isfinite(el))
             for (int k = 0; k < 3; ++k) V[k] = static_cast<float>(e[k] / el);
         }
-        for (int k = 0; k < 3; ++k) {
-          g.P[3 * i + k] = sp.P[k];
-          g.N[3 * i + k] = sp.N[k];
-          g.T[3 * i + k] = sp.T[k];
-          g.baseColor[3 * i + k] = sp.baseColor[k];
-          g.emissive[3 * i + k] = sp.emissive[k];
-          g.sheenColor[3 * i + k] = sp.sheenColor[k];
-          g.clearcoatN[3 * i + k] = sp.clearcoatN[k];
-        }
-        g.mask[i] = 1.0f;
-        g.metallic[i] = sp.metallic;
-        g.roughness[i] = sp.roughness;
-        g.sheenRoughness[i] = sp.sheenRoughness;
-        g.clearcoat[i] = sp.clearcoat;
-        g.clearcoatRoughness[i] = sp.clearcoatRoughness;
-        g.anisotropyStrength[i] = sp.anisotropyStrength;
-        g.anisotropyRotation[i] = sp.anisotropyRotation;
-        g.occlusion[i] = sp.occlusion;
+        storeSurface(g, i, sp);
       }
       for (int k = 0; k < 3; ++k) g.V[3 * i + k] = V[k];
     }
@@ -263,7 +282,7 @@ void Raycaster::trace(const View& view, int width, int height, float jx, float j
   constexpr int kTileW = 32, kTileH = 8;
   const int tilesX = (width + kTileW - 1) / kTileW, tiles = tilesX * ((height + kTileH - 1) / kTileH);
   std::atomic<int> nextTile{0};
-  auto worker = [&] {
+  onEveryCore([&] {
     RayContext rc;
     rtcInitIntersectContext(&rc.embree);
     rc.embree.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
@@ -276,8 +295,7 @@ void Raycaster::trace(const View& view, int width, int height, float jx, float j
       for (int y = y0; y < std::min(height, y0 + kTileH); y += 4)
         for (int x = x0; x < std::min(width, x0 + kTileW); x += 4) traceBlock(rc, x, y);
     }
-  };
-  parallel(worker);
+  });
 }
 
 }  // namespace brdfcl::gltf

@@ -127,41 +127,47 @@ bool Surfaces::accepts(const Hit& h) const {
   return alpha >= cutoff;
 }
 
-SurfacePoint Surfaces::evaluate(const Hit& h) const {
-  const Material& m = material(h.prim);
-  const Primitive& p = asset_.primitives[h.prim];
-  const std::size_t vc = p.vertexCount();
-  const Triangle t = triangle(p, h);
-  const V3 dir = vec(h.dir);
-  SurfacePoint s;
-  s.P = arr(t.b0 * t.p0 + t.b1 * t.p1 + t.b2 * t.p2);
+namespace {
+// A hit's texture lookups. Slots often share a texture (occlusion and metallic-roughness in one
+// ORM image, clearcoat and its roughness): such a texture is sampled once per hit.
+class HitSampler {
+ public:
+  HitSampler(const Textures& textures, const Uv (&uvs)[2]) : textures_(textures), uvs_(uvs) {}
 
-  const float cosTheta = dot(t.Ng, dir);
-  const float footprint = std::log2(h.coneWidth / std::max(std::fabs(cosTheta), 1e-4f));
-  const Uv uvs[2] = {uvSet(p.uv0, t, vc, footprint), uvSet(p.uv1, t, vc, footprint)};
-  // Slots often share a texture (occlusion and metallic-roughness in one ORM image, clearcoat
-  // and its roughness): such a texture is sampled once per hit.
+  std::array<float, 4> operator()(const TextureRef& ref, ColorSpace space) {
+    for (int k = 0; k < doneCount_; ++k) {
+      const TextureRef& r = *done_[k].ref;
+      if (r.texture == ref.texture && done_[k].space == space && r.texCoord == ref.texCoord &&
+          r.transform.offset == ref.transform.offset && r.transform.rotation == ref.transform.rotation &&
+          r.transform.scale == ref.transform.scale)
+        return done_[k].value;
+    }
+    const Uv& uv = uvs_[ref.texCoord == 1 ? 1 : 0];
+    const std::array<float, 4> value = textures_.sample(ref, space, uv.u, uv.v, uv.coneLod);
+    if (doneCount_ < 12) done_[doneCount_++] = {&ref, space, value};
+    return value;
+  }
+
+ private:
   struct Sampled {
     const TextureRef* ref;
     ColorSpace space;
     std::array<float, 4> value;
   };
-  Sampled done[12];
-  int doneCount = 0;
-  auto sample = [&](const TextureRef& ref, ColorSpace space) {
-    for (int k = 0; k < doneCount; ++k) {
-      const TextureRef& r = *done[k].ref;
-      if (r.texture == ref.texture && done[k].space == space && r.texCoord == ref.texCoord &&
-          r.transform.offset == ref.transform.offset && r.transform.rotation == ref.transform.rotation &&
-          r.transform.scale == ref.transform.scale)
-        return done[k].value;
-    }
-    const Uv& uv = uvs[ref.texCoord == 1 ? 1 : 0];
-    const std::array<float, 4> value = textures_.sample(ref, space, uv.u, uv.v, uv.coneLod);
-    if (doneCount < 12) done[doneCount++] = {&ref, space, value};
-    return value;
-  };
+  const Textures& textures_;
+  const Uv (&uvs_)[2];
+  Sampled done_[12];
+  int doneCount_ = 0;
+};
 
+// The shading frame at a hit: normal, tangent, bitangent and the bitangent's sign w.
+struct Frame {
+  V3 N, T, B;
+  float w;
+};
+
+Frame hitFrame(const Material& m, const Primitive& p, const Triangle& t, const Uv (&uvs)[2], float cosTheta) {
+  const std::size_t vc = p.vertexCount();
   V3 Ng = t.Ng, N = Ng;
   if (p.normals.size() >= 3 * vc) {
     N = t.b0 * vertex3(p.normals, t.i0) + t.b1 * vertex3(p.normals, t.i1) + t.b2 * vertex3(p.normals, t.i2);
@@ -205,25 +211,26 @@ SurfacePoint Surfaces::evaluate(const Hit& h) const {
     w = -w;
   }
   T = orthoTangent(T, N);
-  const V3 B = w * cross(N, T);
+  return {N, T, w * cross(N, T), w};
+}
 
-  auto mapNormal = [&](const TextureRef& ref) {
-    const std::array<float, 4> c = sample(ref, ColorSpace::Linear);
-    V3 n{(2.0f * c[0] - 1.0f) * ref.value, (2.0f * c[1] - 1.0f) * ref.value, 2.0f * c[2] - 1.0f};
-    if (!normalize(n)) return N;
-    V3 mapped = n.x * T + n.y * B + n.z * N;
-    return normalize(mapped) ? mapped : N;
-  };
-  const V3 Nmapped = m.normalTexture.present() ? mapNormal(m.normalTexture) : N;
-  s.N = arr(Nmapped);
-  s.clearcoatN = arr(m.clearcoatNormalTexture.present() ? mapNormal(m.clearcoatNormalTexture) : N);
+// The normal a normal map gives in `frame`, or the frame's normal where the texel has none.
+V3 mapNormal(const TextureRef& ref, const Frame& frame, HitSampler& sample) {
+  const std::array<float, 4> c = sample(ref, ColorSpace::Linear);
+  V3 n{(2.0f * c[0] - 1.0f) * ref.value, (2.0f * c[1] - 1.0f) * ref.value, 2.0f * c[2] - 1.0f};
+  if (!normalize(n)) return frame.N;
+  V3 mapped = n.x * frame.T + n.y * frame.B + n.z * frame.N;
+  return normalize(mapped) ? mapped : frame.N;
+}
 
+// Base colour (with COLOR_0), metallic, roughness and occlusion of `s`.
+void baseLayer(SurfacePoint& s, const Material& m, const Primitive& p, const Triangle& t, HitSampler& sample) {
   std::array<float, 3> base{clamp01(m.baseColorFactor[0]), clamp01(m.baseColorFactor[1]), clamp01(m.baseColorFactor[2])};
   if (m.baseColorTexture.present()) {
     const std::array<float, 4> c = sample(m.baseColorTexture, ColorSpace::Srgb);
     for (int k = 0; k < 3; ++k) base[k] *= c[k];
   }
-  if (p.color0.size() >= 4 * vc)
+  if (p.color0.size() >= 4 * p.vertexCount())
     for (int k = 0; k < 3; ++k)
       base[k] *= clamp01(t.b0 * p.color0[4 * t.i0 + k] + t.b1 * p.color0[4 * t.i1 + k] + t.b2 * p.color0[4 * t.i2 + k]);
   s.baseColor = base;
@@ -237,7 +244,10 @@ SurfacePoint Surfaces::evaluate(const Hit& h) const {
   }
   if (m.occlusionTexture.present())
     s.occlusion = 1.0f + clamp01(m.occlusionTexture.value) * (sample(m.occlusionTexture, ColorSpace::Linear)[0] - 1.0f);
+}
 
+// Emission, sheen and clearcoat of `s`.
+void extensionLayers(SurfacePoint& s, const Material& m, HitSampler& sample) {
   const float strength = std::max(0.0f, m.emissiveStrength);
   s.emissive = {strength * clamp01(m.emissiveFactor[0]), strength * clamp01(m.emissiveFactor[1]),
                 strength * clamp01(m.emissiveFactor[2])};
@@ -259,6 +269,29 @@ SurfacePoint Surfaces::evaluate(const Hit& h) const {
   s.clearcoatRoughness = clamp01(m.clearcoatRoughnessFactor);
   if (m.clearcoatRoughnessTexture.present())
     s.clearcoatRoughness *= sample(m.clearcoatRoughnessTexture, ColorSpace::Linear)[1];
+}
+}  // namespace
+
+SurfacePoint Surfaces::evaluate(const Hit& h) const {
+  const Material& m = material(h.prim);
+  const Primitive& p = asset_.primitives[h.prim];
+  const std::size_t vc = p.vertexCount();
+  const Triangle t = triangle(p, h);
+  const V3 dir = vec(h.dir);
+  SurfacePoint s;
+  s.P = arr(t.b0 * t.p0 + t.b1 * t.p1 + t.b2 * t.p2);
+
+  const float cosTheta = dot(t.Ng, dir);
+  const float footprint = std::log2(h.coneWidth / std::max(std::fabs(cosTheta), 1e-4f));
+  const Uv uvs[2] = {uvSet(p.uv0, t, vc, footprint), uvSet(p.uv1, t, vc, footprint)};
+  HitSampler sample(textures_, uvs);
+  const Frame frame = hitFrame(m, p, t, uvs, cosTheta);
+
+  const V3 Nmapped = m.normalTexture.present() ? mapNormal(m.normalTexture, frame, sample) : frame.N;
+  s.N = arr(Nmapped);
+  s.clearcoatN = arr(m.clearcoatNormalTexture.present() ? mapNormal(m.clearcoatNormalTexture, frame, sample) : frame.N);
+  baseLayer(s, m, p, t, sample);
+  extensionLayers(s, m, sample);
 
   // KHR_materials_anisotropy: the direction lives in the (T, B) plane with B = w N x T; the
   // G-buffer angle is about N from T towards N x T, so the sign w folds into it.
@@ -270,8 +303,8 @@ SurfacePoint Surfaces::evaluate(const Hit& h) const {
     if (dx != 0.0f || dy != 0.0f) rotation += std::atan2(dy, dx);
     s.anisotropyStrength *= c[2];
   }
-  s.anisotropyRotation = w * rotation;
-  s.T = arr(orthoTangent(T, Nmapped));
+  s.anisotropyRotation = frame.w * rotation;
+  s.T = arr(orthoTangent(frame.T, Nmapped));
   return s;
 }
 

@@ -27,7 +27,7 @@
 
 #include <fmt/format.h>
 
-#include "brdfcl/cache.hpp"
+#include "io/cache.hpp"
 #include "brdfcl/error.hpp"
 #include "io/messages.hpp"
 #include "io/temporaries.hpp"

@@ -234,22 +234,26 @@ struct Source {
   std::size_t firstPlane;
 };
 
-// The first offending value in raster order (then in kFields order within the pixel), found by
-// all cores over bands of rows: a 4K G-buffer has 8 million pixels of up to 24 planes.
-void checkValues(const std::vector<std::vector<float>>& planes, const std::vector<Source>& sources,
-                 const std::vector<std::string>& names, int width, const std::string& shown, const std::string& skip) {
-  const std::vector<float>* mask = nullptr;
-  for (const Source& s : sources)
-    if (s.field->member == &GBuffer::mask) mask = &planes[s.firstPlane];
-  if (!mask) return;
-  const std::size_t n = mask->size();
-  // The failing pixel and what to say about it; a pixel index beyond n = none found.
-  struct Failure {
-    std::size_t pixel = SIZE_MAX;
-    std::string message;
-  };
-  auto checkPixel = [&](std::size_t i, Failure& f) {
-    if (!((*mask)[i] >= 0.5f)) return false;  // the environment shows: nothing here is shaded
+// A pixel whose value breaks its channel's range, and what to say about it; a pixel index of
+// SIZE_MAX = none found.
+struct Failure {
+  std::size_t pixel = SIZE_MAX;
+  std::string message;
+};
+
+// The checks of checkValues over one G-buffer's planes.
+struct ValueCheck {
+  const std::vector<std::vector<float>>& planes;
+  const std::vector<Source>& sources;
+  const std::vector<std::string>& names;
+  int width;
+  const std::string& shown;
+  const std::string& skip;
+  const std::vector<float>& mask;
+
+  // Whether pixel i breaks a range; if so, `f` says how.
+  bool pixelFails(std::size_t i, Failure& f) const {
+    if (!(mask[i] >= 0.5f)) return false;  // the environment shows: nothing here is shaded
     for (const Source& s : sources) {
       const Field& fd = *s.field;
       if (fd.range == Range::Any) continue;
@@ -281,14 +285,15 @@ void checkValues(const std::vector<std::vector<float>>& planes, const std::vecto
       }
     }
     return false;
-  };
+  }
+
   // Whether a block of pixels may hold a failure: branch-free loops over one plane at a time,
   // which the compiler vectorizes; only a flagged block is searched pixel by pixel. The unit
-  // test on the squared length is a little stricter than checkPixel's, which has the last word.
-  const float lo = float((1.0 - kGBufferUnitTolerance) * (1.0 - kGBufferUnitTolerance)) + 1e-6f;
-  const float hi = float((1.0 + kGBufferUnitTolerance) * (1.0 + kGBufferUnitTolerance)) - 1e-6f;
-  auto mayFail = [&](std::size_t b0, std::size_t b1) {
-    const float* m = mask->data();
+  // test on the squared length is a little stricter than pixelFails', which has the last word.
+  bool blockMayFail(std::size_t b0, std::size_t b1) const {
+    const float lo = float((1.0 - kGBufferUnitTolerance) * (1.0 - kGBufferUnitTolerance)) + 1e-6f;
+    const float hi = float((1.0 + kGBufferUnitTolerance) * (1.0 + kGBufferUnitTolerance)) - 1e-6f;
+    const float* m = mask.data();
     for (const Source& s : sources) {
       const Field& fd = *s.field;
       if (fd.range == Range::Any) continue;
@@ -311,7 +316,19 @@ void checkValues(const std::vector<std::vector<float>>& planes, const std::vecto
       if (bad) return true;
     }
     return false;
-  };
+  }
+};
+
+// The first offending value in raster order (then in kFields order within the pixel), found by
+// all cores over bands of rows: a 4K G-buffer has 8 million pixels of up to 24 planes.
+void checkValues(const std::vector<std::vector<float>>& planes, const std::vector<Source>& sources,
+                 const std::vector<std::string>& names, int width, const std::string& shown, const std::string& skip) {
+  const std::vector<float>* mask = nullptr;
+  for (const Source& s : sources)
+    if (s.field->member == &GBuffer::mask) mask = &planes[s.firstPlane];
+  if (!mask) return;
+  const std::size_t n = mask->size();
+  const ValueCheck check{planes, sources, names, width, shown, skip, *mask};
   const unsigned threads = n < (1u << 16) ? 1u : std::max(1u, std::min(16u, std::thread::hardware_concurrency()));
   const std::size_t band = (n + threads - 1) / threads;
   constexpr std::size_t kBlock = 2048;
@@ -321,9 +338,9 @@ void checkValues(const std::vector<std::vector<float>>& planes, const std::vecto
     const std::size_t end = std::min(n, (t + 1) * band);
     for (std::size_t b0 = t * band; b0 < end && b0 < earliest.load(std::memory_order_relaxed); b0 += kBlock) {
       const std::size_t b1 = std::min(end, b0 + kBlock);
-      if (!mayFail(b0, b1)) continue;
+      if (!check.blockMayFail(b0, b1)) continue;
       for (std::size_t i = b0; i < b1; ++i)
-        if (checkPixel(i, found[t])) {
+        if (check.pixelFails(i, found[t])) {
           std::size_t e = earliest.load();
           while (i < e && !earliest.compare_exchange_weak(e, i)) {
           }
@@ -365,80 +382,75 @@ void checkGBufferValues(const GBuffer& g, const std::string& shown, const std::s
 
 GBuffer readGBuffer(const std::string& path) { return readGBuffer(path, GBufferReadOptions{}); }
 
-GBuffer readGBuffer(const std::string& path, const GBufferReadOptions& options) {
-  const std::string shown = printable(path);
-  // Which file channels feed which field, decided once the header is known.
-  std::vector<Source> sources;
-  std::vector<std::string> chosenNames;  // as the file spells them, one per plane read
-
-  auto choose = [&](const std::vector<ExrChannelInfo>& channels) {
-    std::set<std::string> have;
-    for (const auto& c : channels) have.insert(c.name);
-    std::vector<std::string> chosen;
-    for (const Field& f : kFields) {
-      std::vector<std::string> names = channelNames(f.name, f.suffixes);
-      std::size_t present = std::count_if(names.begin(), names.end(), [&](const auto& n) { return have.count(n) > 0; });
-      if (present == 0 && f.blender) {
-        // Blender multilayer: "<layer>.<Pass>.X". Any one layer name is accepted; several would
-        // leave it ambiguous which render layer is meant.
-        const std::string pass = std::string(".") + f.blender + ".";
-        std::set<std::string> layers;
-        for (const auto& c : have) {
-          const auto at = c.rfind(pass);
-          if (at != std::string::npos && at > 0 && at + pass.size() + 1 == c.size()) layers.insert(c.substr(0, at));
-        }
-        if (layers.size() > 1) {
-          std::vector<std::string> list(layers.begin(), layers.end());
-          throw Error(shown + ": several layers have a " + f.blender + " pass (" + printable(joined(list), 200) +
-                      "); keep one layer, or add canonical channels " + joined(names));
-        }
-        if (layers.size() == 1) {
-          names = channelNames(*layers.begin() + "." + f.blender, f.suffixes);
-          present = std::count_if(names.begin(), names.end(), [&](const auto& n) { return have.count(n) > 0; });
-        }
+namespace {
+// The file channels that feed each field of kFields (appended to `sources`) and their names in
+// plane order, from the file's header: canonical names, else one Blender layer's passes.
+std::vector<std::string> chooseChannels(const std::vector<ExrChannelInfo>& channels, const std::string& shown,
+                                        std::vector<Source>& sources) {
+  std::set<std::string> have;
+  for (const auto& c : channels) have.insert(c.name);
+  std::vector<std::string> chosen;
+  for (const Field& f : kFields) {
+    std::vector<std::string> names = channelNames(f.name, f.suffixes);
+    std::size_t present = std::count_if(names.begin(), names.end(), [&](const auto& n) { return have.count(n) > 0; });
+    if (present == 0 && f.blender) {
+      // Blender multilayer: "<layer>.<Pass>.X". Any one layer name is accepted; several would
+      // leave it ambiguous which render layer is meant.
+      const std::string pass = std::string(".") + f.blender + ".";
+      std::set<std::string> layers;
+      for (const auto& c : have) {
+        const auto at = c.rfind(pass);
+        if (at != std::string::npos && at > 0 && at + pass.size() + 1 == c.size()) layers.insert(c.substr(0, at));
       }
-      if (present == 0) {
-        if (f.required)
-          throw Error(shown + ": missing required channel" + (names.size() > 1 ? "s " : " ") + joined(names) +
-                      (f.blender ? std::string(" (or Blender's <layer>.") + f.blender + ".X/Y/Z)" : "") +
-                      "; see docs/gbuffer.md for the channel names");
-        continue;
+      if (layers.size() > 1) {
+        std::vector<std::string> list(layers.begin(), layers.end());
+        throw Error(shown + ": several layers have a " + f.blender + " pass (" + printable(joined(list), 200) +
+                    "); keep one layer, or add canonical channels " + joined(names));
       }
-      if (present != names.size()) {
-        std::string missing;
-        for (const auto& n : names)
-          if (!have.count(n)) missing += (missing.empty() ? "" : " ") + n;
-        throw Error(shown + ": incomplete " + printable(names[0].substr(0, names[0].size() - 2)) + " vector: missing " +
-                    printable(missing) + "; write all of " + printable(joined(names)));
+      if (layers.size() == 1) {
+        names = channelNames(*layers.begin() + "." + f.blender, f.suffixes);
+        present = std::count_if(names.begin(), names.end(), [&](const auto& n) { return have.count(n) > 0; });
       }
-      sources.push_back({&f, chosen.size()});
-      chosen.insert(chosen.end(), names.begin(), names.end());
     }
-    chosenNames = chosen;
-    return chosen;
-  };
+    if (present == 0) {
+      if (f.required)
+        throw Error(shown + ": missing required channel" + (names.size() > 1 ? "s " : " ") + joined(names) +
+                    (f.blender ? std::string(" (or Blender's <layer>.") + f.blender + ".X/Y/Z)" : "") +
+                    "; see docs/gbuffer.md for the channel names");
+      continue;
+    }
+    if (present != names.size()) {
+      std::string missing;
+      for (const auto& n : names)
+        if (!have.count(n)) missing += (missing.empty() ? "" : " ") + n;
+      throw Error(shown + ": incomplete " + printable(names[0].substr(0, names[0].size() - 2)) + " vector: missing " +
+                  printable(missing) + "; write all of " + printable(joined(names)));
+    }
+    sources.push_back({&f, chosen.size()});
+    chosen.insert(chosen.end(), names.begin(), names.end());
+  }
+  return chosen;
 
-  GBuffer g;
-  // The frame budget of shade (or BRDFCL_MAX_IMAGE_PIXELS), from the header before decoding.
-  std::vector<std::vector<float>> planes =
-      detail::readExrChannels(path, choose, g.width, g.height, [&](long long w, long long h) {
-        detail::checkImagePixels(detail::ImageKind::GBuffer, shown, w, h);
-      });
-  const std::size_t n = g.pixelCount();
-  // Checked here, where the file can be named, rather than only when shading starts (after the
-  // environment is prepared, which takes seconds).
+}
+
+// Checked where the file can be named, rather than only when shading starts (after the
+// environment is prepared, which takes seconds).
+void checkFinite(const std::vector<std::vector<float>>& planes, const std::vector<std::string>& names, int width,
+                 const std::string& shown) {
   for (std::size_t p = 0; p < planes.size(); ++p)
-    for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t i = 0; i < planes[p].size(); ++i)
       if (!std::isfinite(planes[p][i])) {
         const float v = planes[p][i];
-        throw Error(shown + ": pixel (" + std::to_string(i % std::size_t(g.width)) + ", " +
-                    std::to_string(i / std::size_t(g.width)) + ") has a non-finite value (" +
-                    (std::isnan(v) ? "nan" : v > 0 ? "inf" : "-inf") + ") in channel '" + printable(chosenNames[p]) +
+        throw Error(shown + ": pixel (" + std::to_string(i % std::size_t(width)) + ", " +
+                    std::to_string(i / std::size_t(width)) + ") has a non-finite value (" +
+                    (std::isnan(v) ? "nan" : v > 0 ? "inf" : "-inf") + ") in channel '" + printable(names[p]) +
                     "'; fix the renderer's output");
       }
-  if (options.check)
-    checkValues(planes, sources, chosenNames, g.width, shown,
-                optionStyle() == OptionStyle::Python ? "check=False" : "--no-check");
+}
+
+// The planes moved into the fields of `g`, vectors interleaved (x y z a pixel).
+void storePlanes(GBuffer& g, std::vector<std::vector<float>>& planes, const std::vector<Source>& sources) {
+  const std::size_t n = g.pixelCount();
   for (const Source& s : sources) {
     const std::size_t k = std::max<std::size_t>(1, std::char_traits<char>::length(s.field->suffixes));
     std::vector<float>& out = g.*(s.field->member);
@@ -452,8 +464,11 @@ GBuffer readGBuffer(const std::string& path, const GBufferReadOptions& options) 
       for (std::size_t i = 0; i < n; ++i) out[k * i + c] = plane[i];
     }
   }
-  // V is not renormalized (as N and T are not), but it has to have a direction: a zero vector
-  // would silently fall back to no view at all.
+}
+
+// V is not renormalized (as N and T are not), but it has to have a direction: a zero vector
+// would silently fall back to no view at all.
+void checkViewDirections(const GBuffer& g, const std::string& shown) {
   for (std::size_t i = 0; i < g.V.size() / 3; ++i) {
     const double x = g.V[3 * i], y = g.V[3 * i + 1], z = g.V[3 * i + 2];
     if (x * x + y * y + z * z < 1e-12)
@@ -462,6 +477,32 @@ GBuffer readGBuffer(const std::string& path, const GBufferReadOptions& options) 
                   ") has a zero-length view direction V; write the unit direction towards the viewer, or leave "
                   "V.X V.Y V.Z out to use the scene camera");
   }
+}
+}  // namespace
+
+GBuffer readGBuffer(const std::string& path, const GBufferReadOptions& options) {
+  const std::string shown = printable(path);
+  // Which file channels feed which field, decided once the header is known.
+  std::vector<Source> sources;
+  std::vector<std::string> chosenNames;  // as the file spells them, one per plane read
+
+  auto choose = [&](const std::vector<ExrChannelInfo>& channels) {
+    chosenNames = chooseChannels(channels, shown, sources);
+    return chosenNames;
+  };
+
+  GBuffer g;
+  // The frame budget of shade (or BRDFCL_MAX_IMAGE_PIXELS), from the header before decoding.
+  std::vector<std::vector<float>> planes =
+      detail::readExrChannels(path, choose, g.width, g.height, [&](long long w, long long h) {
+        detail::checkImagePixels(detail::ImageKind::GBuffer, shown, w, h);
+      });
+  checkFinite(planes, chosenNames, g.width, shown);
+  if (options.check)
+    checkValues(planes, sources, chosenNames, g.width, shown,
+                optionStyle() == OptionStyle::Python ? "check=False" : "--no-check");
+  storePlanes(g, planes, sources);
+  checkViewDirections(g, shown);
   // The header once more, now that readExrChannels has checked the file: its attributes are
   // small and the reader keeps no header of its own.
   try {

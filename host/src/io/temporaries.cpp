@@ -18,7 +18,7 @@
 #include <filesystem>
 #include <vector>
 
-#include "brdfcl/cleanup.hpp"
+#include "io/cleanup.hpp"
 
 namespace brdfcl::detail {
 namespace {

@@ -1,6 +1,6 @@
 // Gallery materials. The seed examples keep the spec defaults they were written against
 // (baseColor 1, metallic 1, roughness 1 when the example sets only its own extension).
-#include "brdfcl/gallery.hpp"
+#include "model/gallery.hpp"
 
 #include "brdfcl/io.hpp"
 

@@ -5,7 +5,7 @@
 
 #include "brdfcl/error.hpp"
 #include "brdfcl/material.hpp"
-#include "brdfcl/profile_version.hpp"
+#include "model/profile_version.hpp"
 #include "io/option_style.hpp"
 
 namespace brdfcl {

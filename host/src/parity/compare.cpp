@@ -1,7 +1,7 @@
 // `brdfcl compare` as a library: two profiles evaluated per lobe over the in-plane grid and the
 // random pairs, their relative difference and directional albedo, the text and JSON reports, and
 // the log2-ratio heat maps (in-plane and half/difference) drawn with the plot layer.
-#include "brdfcl/compare.hpp"
+#include "parity/compare.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -15,7 +15,7 @@
 #include "brdfcl/albedo.hpp"
 #include "brdfcl/error.hpp"
 #include "brdfcl/evaluator.hpp"
-#include "brdfcl/profile_version.hpp"
+#include "model/profile_version.hpp"
 #include "eval/splitmix64.hpp"
 #include "io/messages.hpp"
 #include "parity/image_diff.hpp"

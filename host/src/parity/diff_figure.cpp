@@ -3,7 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "brdfcl/image_diff.hpp"
+#include "parity/diff.hpp"
 #include "parity/image_diff.hpp"
 
 namespace brdfcl {

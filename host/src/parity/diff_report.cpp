@@ -5,7 +5,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include "brdfcl/image_diff.hpp"
+#include "parity/diff.hpp"
 #include "io/messages.hpp"
 #include "parity/image_diff.hpp"
 

@@ -11,7 +11,7 @@
 
 #include "brdfcl/error.hpp"
 #include "brdfcl/image.hpp"
-#include "brdfcl/image_diff.hpp"
+#include "parity/diff.hpp"
 #include "io/exr_header.hpp"
 #include "io/input_limits.hpp"
 #include "io/messages.hpp"

@@ -5,7 +5,7 @@
 
 #include "brdfcl/error.hpp"
 #include "brdfcl/io.hpp"
-#include "brdfcl/plot.hpp"
+#include "plot/plot.hpp"
 #include "io/files.hpp"
 #include "io/messages.hpp"
 #include "io/png.hpp"

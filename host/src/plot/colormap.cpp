@@ -9,7 +9,7 @@
 #include <iterator>
 
 #include "brdfcl/image.hpp"
-#include "brdfcl/plot.hpp"
+#include "plot/plot.hpp"
 
 namespace brdfcl::plot {
 

@@ -3,7 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "brdfcl/plot.hpp"
+#include "plot/plot.hpp"
 
 namespace brdfcl::plot {
 

@@ -7,6 +7,7 @@
 #include "common/shading_layout.h"
 #include "eval/quadrature.hpp"
 #include "io/disk_cache.hpp"
+#include "runtime/opencl.hpp"
 
 namespace brdfcl {
 
@@ -21,8 +22,8 @@ std::vector<float> bakeAnisotropicDfg(Runtime& rt, int tPerPanel, int phiCount) 
   const std::vector<float> nodes(rule.nodes.begin(), rule.nodes.end()), weights(rule.weights.begin(), rule.weights.end());
   std::vector<float> out(2 * std::size_t(kTexels));
   try {
-    auto program = rt.program("aniso_dfg.cl");
-    const auto& ctx = rt.context();
+    auto program = rt.opencl().program("aniso_dfg.cl");
+    const auto& ctx = rt.opencl().context();
     const auto ro = CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR;
     cl::Buffer bn(ctx, ro, nodes.size() * 4, const_cast<float*>(nodes.data()));
     cl::Buffer bw(ctx, ro, weights.size() * 4, const_cast<float*>(weights.data()));
@@ -35,9 +36,9 @@ std::vector<float> bakeAnisotropicDfg(Runtime& rt, int tPerPanel, int phiCount) 
     k.setArg(a++, int(nodes.size()));
     k.setArg(a++, phiCount);
     k.setArg(a++, bo);
-    rt.queue().enqueueNDRangeKernel(k, cl::NullRange,
+    rt.opencl().queue().enqueueNDRangeKernel(k, cl::NullRange,
                                     cl::NDRange(BRDFCL_ANISO_DFG_NV, BRDFCL_ANISO_DFG_R, BRDFCL_ANISO_DFG_S * BRDFCL_ANISO_DFG_PSI));
-    rt.queue().enqueueReadBuffer(bo, CL_TRUE, 0, out.size() * 4, out.data());
+    rt.opencl().queue().enqueueReadBuffer(bo, CL_TRUE, 0, out.size() * 4, out.data());
   } catch (const cl::Error&) {
     rethrowOpenCL("baking the anisotropic DFG table");
   }

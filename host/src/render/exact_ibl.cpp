@@ -10,6 +10,7 @@
 
 #include "brdfcl/error.hpp"
 #include "io/option_style.hpp"
+#include "runtime/opencl.hpp"
 
 namespace brdfcl {
 
@@ -117,7 +118,7 @@ void integrateExactIbl(Runtime& rt, const ExactIblInputs& in, const std::vector<
                         : std::clamp(int(kPixelSamplesPerLaunch / double(std::max<std::size_t>(np, 1))), 1, total);
   std::vector<float> acc(kAccPlanes * np);
   try {
-    cl::Buffer bacc(rt.context(), CL_MEM_READ_WRITE, acc.size() * 4);
+    cl::Buffer bacc(rt.opencl().context(), CL_MEM_READ_WRITE, acc.size() * 4);
     cl::Kernel k(in.program, "ibl_exact");
     int a = 0;
     k.setArg(a++, *in.gbuffer);
@@ -141,11 +142,11 @@ void integrateExactIbl(Runtime& rt, const ExactIblInputs& in, const std::vector<
       const int end = std::min(total, begin + chunk);
       k.setArg(beginArg, begin);
       k.setArg(endArg, end);
-      rt.queue().enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(std::size_t(in.width), std::size_t(in.height)));
-      rt.queue().finish();
+      rt.opencl().queue().enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(std::size_t(in.width), std::size_t(in.height)));
+      rt.opencl().queue().finish();
       if (options.progress) options.progress(end, total);
     }
-    rt.queue().enqueueReadBuffer(bacc, CL_TRUE, 0, acc.size() * 4, acc.data());
+    rt.opencl().queue().enqueueReadBuffer(bacc, CL_TRUE, 0, acc.size() * 4, acc.data());
   } catch (const cl::Error&) {
     rethrowOpenCL("integrating the exact image-based light");
   }

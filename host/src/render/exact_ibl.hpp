@@ -4,7 +4,7 @@
 #include <vector>
 
 #include "brdfcl/render.hpp"
-#include "brdfcl/runtime.hpp"
+#include "runtime/opencl.hpp"
 #include "kernels/common/shading_layout.h"
 
 namespace brdfcl::detail {

@@ -1,6 +1,6 @@
 // Lighting choice and the multi-sample glTF render: stratified sub-pixel G-buffers, each shaded
 // through the same deferred shader as `brdfcl shade`, averaged into the pixel.
-#include "brdfcl/gltf_frame.hpp"
+#include "render/gltf_frame.hpp"
 
 #include <sys/stat.h>
 #include <unistd.h>

@@ -14,6 +14,7 @@
 #include "io/disk_cache.hpp"
 #include "model/engine_tables.hpp"
 #include "model/pack.hpp"
+#include "runtime/opencl.hpp"
 
 namespace brdfcl::detail {
 namespace {
@@ -35,8 +36,8 @@ std::size_t chainFloatsOf(int w0, int h0, int capW, int capH) {
 // GGX and Charlie prefiltered chains (kPrefilterLevels levels each, roughness k / (levels - 1))
 // and the irradiance map, concatenated in that order: the part of the light worth caching.
 std::vector<float> prefilterEnvironment(Runtime& rt, const std::vector<float>& env, int envW, int envH) {
-  const auto& ctx = rt.context();
-  auto& q = rt.queue();
+  const auto& ctx = rt.opencl().context();
+  auto& q = rt.opencl().queue();
   // Source chain: the environment and its 2x2 box mips down to 8x4.
   std::vector<int> ws{envW}, hs{envH};
   while (ws.back() > 8 && hs.back() > 4) ws.push_back(std::max(ws.back() / 2, 8)), hs.push_back(std::max(hs.back() / 2, 4));
@@ -44,7 +45,7 @@ std::vector<float> prefilterEnvironment(Runtime& rt, const std::vector<float>& e
   for (std::size_t k = 0; k < ws.size(); ++k) chainFloats += 3 * std::size_t(ws[k]) * hs[k];
   cl::Buffer chain(ctx, CL_MEM_READ_WRITE, chainFloats * 4);
   q.enqueueWriteBuffer(chain, CL_TRUE, 0, env.size() * 4, env.data());
-  auto prefilterProgram = rt.program("ibl_prefilter.cl");
+  auto prefilterProgram = rt.opencl().program("ibl_prefilter.cl");
   cl::Kernel down(prefilterProgram, "env_downsample");
   std::size_t offset = 0;
   for (std::size_t k = 0; k + 1 < ws.size(); ++k) {
@@ -129,7 +130,7 @@ std::shared_ptr<const PreparedLight> prepareLight(Runtime& rt, const Environment
   auto prepared = std::make_shared<PreparedLight>();
   auto& s = *prepared;
   const auto env = environmentPlanes(environment, s.envW, s.envH);
-  const auto& ctx = rt.context();
+  const auto& ctx = rt.opencl().context();
   try {
     s.background = readOnly(ctx, env);
     // The prefiltered chains and irradiance depend only on the environment's texels and the

@@ -9,7 +9,7 @@
 
 #include "brdfcl/evaluator.hpp"
 #include "brdfcl/render.hpp"
-#include "brdfcl/runtime.hpp"
+#include "runtime/opencl.hpp"
 #include "kernels/common/shading_layout.h"
 
 namespace brdfcl::detail {

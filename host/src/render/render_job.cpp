@@ -5,10 +5,10 @@
 
 #include <fmt/format.h>
 
-#include "brdfcl/device_set.hpp"
+#include "devices/device_set.hpp"
 #include "brdfcl/error.hpp"
 #include "brdfcl/frame_budget.hpp"
-#include "brdfcl/gltf_frame.hpp"
+#include "render/gltf_frame.hpp"
 #include "io/input_limits.hpp"
 #include "io/option_style.hpp"
 

@@ -10,7 +10,7 @@
 
 #include <fmt/format.h>
 
-#include "brdfcl/device_set.hpp"
+#include "devices/device_set.hpp"
 #include "brdfcl/error.hpp"
 #include "brdfcl/evaluator.hpp"
 #include "brdfcl/frame_budget.hpp"
@@ -22,6 +22,7 @@
 #include "render/camera.hpp"
 #include "render/exact_ibl.hpp"
 #include "render/prefilter.hpp"
+#include "runtime/opencl.hpp"
 
 namespace brdfcl {
 
@@ -137,6 +138,19 @@ struct Shader::State {
   cl::Program exactProgram;
   cl::Buffer envRows, envCols, envTexelP;
   float envShare = 0.0f;
+
+  // The shade kernel with every argument set but the band's (y0 and rows, at bandArg and after).
+  cl::Kernel shadeKernel(const GBuffer& g, const cl::Buffer& bg, const cl::Buffer& bo, const cl::Buffer& aniso,
+                         bool exact, int& bandArg) const;
+  // Rows [rowBegin, rowEnd) of the frame whose planes are `planes`, in bands, into `out` (3
+  // planes of r, g, b). Each pixel's value depends on the pixel alone, so any split of the rows
+  // gives the same bytes.
+  void shadeRows(const GBuffer& g, const std::vector<float>& planes, int rowBegin, int rowEnd, bool exact,
+                 const ShadeOptions& shadeOptions, bool report, std::vector<float>& out);
+  // --ibl exact's program and environment CDFs, on its first use.
+  void prepareExact();
+  // --ibl exact over the whole frame of `planes`, into `out`.
+  void integrateExact(const GBuffer& g, const ShadeOptions& shadeOptions, std::vector<float>& out, ShadeStats* stats);
 };
 
 Shader::Shader(Runtime& rt, const Scene& scene, EvalOptions options)
@@ -147,13 +161,13 @@ Shader::Shader(Runtime& rt, const Scene& scene, EvalOptions options)
   try {
     const auto lights = packLights(scene);
     s.lightCount = int(scene.lights.size());
-    s.lights = cl::Buffer(rt.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, lights.size() * sizeof(brdfcl_light),
+    s.lights = cl::Buffer(rt.opencl().context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, lights.size() * sizeof(brdfcl_light),
                           const_cast<brdfcl_light*>(lights.data()));
     FeatureSet all;
     all.sheen = all.ratifiedSheen = all.clearcoat = all.anisotropy = true;
     EvalOptions o = options;
     o.lobe = Lobe::All;
-    s.program = rt.program("shade.cl", materialDefines(o, all));
+    s.program = rt.opencl().program("shade.cl", materialDefines(o, all));
   } catch (const cl::Error&) {
     rethrowOpenCL("preparing the shader");
   }
@@ -177,12 +191,142 @@ cl::Buffer anisotropicDfgFor(Runtime& rt, const GBuffer& g) {
   const bool needed = std::any_of(g.anisotropyStrength.begin(), g.anisotropyStrength.end(), [](float v) { return v > 0.0f; });
   std::lock_guard<std::mutex> lock(mutex);
   if (auto it = tables.find(&rt); it != tables.end()) return it->second;
-  if (!needed) return readOnly(rt.context(), std::vector<float>(2, 0.0f));
-  return tables.emplace(&rt, readOnly(rt.context(), cachedAnisotropicDfg(rt))).first->second;
+  if (!needed) return readOnly(rt.opencl().context(), std::vector<float>(2, 0.0f));
+  return tables.emplace(&rt, readOnly(rt.opencl().context(), cachedAnisotropicDfg(rt))).first->second;
 }
 }  // namespace
 
 Image Shader::shade(const GBuffer& g) { return shade(g, ShadeOptions{}, nullptr); }
+
+cl::Kernel Shader::State::shadeKernel(const GBuffer& g, const cl::Buffer& bg, const cl::Buffer& bo,
+                                     const cl::Buffer& aniso, bool exact, int& bandArg) const {
+  cl::Kernel k(program, "shade");
+  int a = 0;
+  k.setArg(a++, bg);
+  k.setArg(a++, g.width);
+  k.setArg(a++, g.height);
+  bandArg = a;  // y0, then the band's rows: set per band
+  a += 2;
+  k.setArg(a++, scene.hasCamera || !g.camera ? cameraFor(scene, g.width, g.height)
+                                              : cameraFor(*g.camera, g.width, g.height));
+  k.setArg(a++, lights);
+  k.setArg(a++, lightCount);
+  k.setArg(a++, light->background);
+  k.setArg(a++, light->ggx);
+  k.setArg(a++, light->charlie);
+  k.setArg(a++, light->irradiance);
+  k.setArg(a++, light->envW);
+  k.setArg(a++, light->envH);
+  k.setArg(a++, charlieW(light->envW));
+  k.setArg(a++, charlieH(light->envH));
+  k.setArg(a++, kPrefilterLevels);
+  k.setArg(a++, kIrradianceW);
+  k.setArg(a++, kIrradianceH);
+  k.setArg(a++, scene.environment.rotation);
+  k.setArg(a++, light->dfg);
+  k.setArg(a++, kDfgSize);
+  k.setArg(a++, aniso);
+  k.setArg(a++, light->sheenE);
+  k.setArg(a++, light->sheenESize);
+  k.setArg(a++, light->fresnelLambert);
+  k.setArg(a++, kFresnelLambertSize);
+  k.setArg(a++, exact ? 0 : 1);
+  k.setArg(a++, bo);
+  return k;
+}
+
+void Shader::State::shadeRows(const GBuffer& g, const std::vector<float>& planes, int rowBegin, int rowEnd, bool exact,
+                              const ShadeOptions& shadeOptions, bool report, std::vector<float>& out) {
+  const std::size_t np = std::size_t(g.width) * g.height;
+  const auto& ctx = rt.opencl().context();
+  // Bands of rows keep every buffer below the device's largest allocation (any image size the
+  // host can hold); the device copy of a band is kept between frames of one size.
+  const int band = std::min(bandRows(rt.info(), g.width, GB_PLANES * sizeof(float)), rowEnd - rowBegin);
+  const std::size_t bandFloats = std::size_t(GB_PLANES) * g.width * band;
+  if (planesOnDevice.first != bandFloats) {
+    planesOnDevice = {bandFloats, cl::Buffer(ctx, CL_MEM_READ_ONLY, bandFloats * 4)};
+  }
+  cl::Buffer& bg = planesOnDevice.second;
+  cl::Buffer bo(ctx, CL_MEM_WRITE_ONLY, 3 * std::size_t(g.width) * band * 4);
+  // Held until the launch is done: a kernel argument does not keep its buffer alive.
+  const cl::Buffer aniso = anisotropicDfgFor(rt, g);
+  int bandArg = 0;
+  cl::Kernel k = shadeKernel(g, bg, bo, aniso, exact, bandArg);
+  auto& q = rt.opencl().queue();
+  for (int y0 = rowBegin; y0 < rowEnd; y0 += band) {
+    const int rows = std::min(band, rowEnd - y0);
+    const std::size_t bandPixels = std::size_t(g.width) * rows, first = std::size_t(y0) * g.width;
+    for (int plane = 0; plane < GB_PLANES; ++plane)
+      q.enqueueWriteBuffer(bg, CL_FALSE, plane * bandPixels * 4, bandPixels * 4, planes.data() + plane * np + first);
+    k.setArg(bandArg, y0);
+    k.setArg(bandArg + 1, rows);
+    q.enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(std::size_t(g.width), std::size_t(rows)));
+    for (int c = 0; c < 3; ++c)
+      q.enqueueReadBuffer(bo, CL_FALSE, c * bandPixels * 4, bandPixels * 4, out.data() + c * np + first);
+    q.finish();
+    if (report && !exact && shadeOptions.progress)
+      shadeOptions.progress((y0 - rowBegin) / band + 1, (rowEnd - rowBegin + band - 1) / band);
+  }
+}
+
+void Shader::State::prepareExact() {
+  if (exactReady) return;
+  const auto& ctx = rt.opencl().context();
+  // The CDFs come from the full-resolution map the kernel reads, as it is on the device.
+  std::vector<float> env(3 * std::size_t(light->envW) * light->envH);
+  rt.opencl().queue().enqueueReadBuffer(light->background, CL_TRUE, 0, env.size() * 4, env.data());
+  const auto cdf = detail::environmentCdf(env, light->envW, light->envH);
+  envRows = readOnly(ctx, cdf.rows);
+  envCols = readOnly(ctx, cdf.cols);
+  envTexelP = readOnly(ctx, cdf.texelP);
+  envShare = cdf.share;
+  FeatureSet all;
+  all.sheen = all.ratifiedSheen = all.clearcoat = all.anisotropy = true;
+  EvalOptions o = options;
+  o.lobe = Lobe::All;
+  exactProgram = rt.opencl().program("ibl_exact.cl", materialDefines(o, all));
+  exactReady = true;
+}
+
+void Shader::State::integrateExact(const GBuffer& g, const ShadeOptions& shadeOptions, std::vector<float>& out,
+                                   ShadeStats* stats) {
+  // The exact integrator reads the whole frame's planes: the split-sum pass's device copy when
+  // it held the frame in one band, else a copy of its own, which must fit one allocation.
+  cl::Buffer whole;
+  if (planesOnDevice.first == planes.size()) {
+    whole = planesOnDevice.second;
+  } else {
+    if (planes.size() * 4 > rt.info().maxAlloc)
+      throw Error(fmt::format("{}: a {}x{} G-buffer needs a {:.1f} GiB device buffer, but '{}' allows {:.1f} GiB; "
+                              "use a smaller {} or {}",
+                              optionWithValue("--ibl", "exact", true), g.width, g.height,
+                              double(planes.size() * 4) / (1u << 30), rt.info().name,
+                              double(rt.info().maxAlloc) / (1u << 30), optionName("--size"),
+                              optionWithValue("--ibl", "split-sum", true)));
+    try {
+      whole = readOnly(rt.opencl().context(), planes);
+    } catch (const cl::Error&) {
+      rethrowOpenCL("preparing the exact image-based light");
+    }
+  }
+  detail::ExactIblInputs in;
+  in.program = exactProgram;
+  in.gbuffer = &whole;
+  in.width = g.width;
+  in.height = g.height;
+  in.camera = scene.hasCamera || !g.camera ? cameraFor(scene, g.width, g.height) : cameraFor(*g.camera, g.width, g.height);
+  in.environment = &light->background;
+  in.rows = &envRows;
+  in.cols = &envCols;
+  in.texelP = &envTexelP;
+  in.envW = light->envW;
+  in.envH = light->envH;
+  in.envShare = envShare;
+  in.rotation = scene.environment.rotation;
+  in.sheenE = &light->sheenE;
+  in.sheenESize = light->sheenESize;
+  detail::integrateExactIbl(rt, in, planes, shadeOptions, out, stats);
+}
 
 Image Shader::shade(const GBuffer& g, const ShadeOptions& options, ShadeStats* stats) {
   auto& s = *s_;
@@ -201,144 +345,29 @@ Image Shader::shade(const GBuffer& g, const ShadeOptions& options, ShadeStats* s
   img.height = g.height;
   const std::size_t np = std::size_t(g.width) * g.height;
   std::vector<float> out(3 * np);
-  // Rows [rowBegin, rowEnd) on one device's state, in bands, into `out`. Each pixel's value
-  // depends on the pixel alone, so any split of the rows gives the same bytes.
-  auto shadeRows = [&](State& st, int rowBegin, int rowEnd, bool report) {
-    const auto& ctx = st.rt.context();
-    // Bands of rows keep every buffer below the device's largest allocation (any image size the
-    // host can hold); the device copy of a band is kept between frames of one size.
-    const int band = std::min(bandRows(st.rt.info(), g.width, GB_PLANES * sizeof(float)), rowEnd - rowBegin);
-    const std::size_t bandFloats = std::size_t(GB_PLANES) * g.width * band;
-    if (st.planesOnDevice.first != bandFloats) {
-      st.planesOnDevice = {bandFloats, cl::Buffer(ctx, CL_MEM_READ_ONLY, bandFloats * 4)};
-    }
-    cl::Buffer& bg = st.planesOnDevice.second;
-    cl::Buffer bo(ctx, CL_MEM_WRITE_ONLY, 3 * std::size_t(g.width) * band * 4);
-    cl::Kernel k(st.program, "shade");
-    // Held until the launch is done: a kernel argument does not keep its buffer alive.
-    const cl::Buffer aniso = anisotropicDfgFor(st.rt, g);
-    int a = 0;
-    k.setArg(a++, bg);
-    k.setArg(a++, g.width);
-    k.setArg(a++, g.height);
-    const int bandArg = a;  // y0, then the band's rows: set per band below
-    a += 2;
-    k.setArg(a++, st.scene.hasCamera || !g.camera ? cameraFor(st.scene, g.width, g.height)
-                                                   : cameraFor(*g.camera, g.width, g.height));
-    k.setArg(a++, st.lights);
-    k.setArg(a++, st.lightCount);
-    k.setArg(a++, st.light->background);
-    k.setArg(a++, st.light->ggx);
-    k.setArg(a++, st.light->charlie);
-    k.setArg(a++, st.light->irradiance);
-    k.setArg(a++, st.light->envW);
-    k.setArg(a++, st.light->envH);
-    k.setArg(a++, charlieW(st.light->envW));
-    k.setArg(a++, charlieH(st.light->envH));
-    k.setArg(a++, kPrefilterLevels);
-    k.setArg(a++, kIrradianceW);
-    k.setArg(a++, kIrradianceH);
-    k.setArg(a++, st.scene.environment.rotation);
-    k.setArg(a++, st.light->dfg);
-    k.setArg(a++, kDfgSize);
-    k.setArg(a++, aniso);
-    k.setArg(a++, st.light->sheenE);
-    k.setArg(a++, st.light->sheenESize);
-    k.setArg(a++, st.light->fresnelLambert);
-    k.setArg(a++, kFresnelLambertSize);
-    k.setArg(a++, exact ? 0 : 1);
-    k.setArg(a++, bo);
-    auto& q = st.rt.queue();
-    for (int y0 = rowBegin; y0 < rowEnd; y0 += band) {
-      const int rows = std::min(band, rowEnd - y0);
-      const std::size_t bandPixels = std::size_t(g.width) * rows, first = std::size_t(y0) * g.width;
-      for (int plane = 0; plane < GB_PLANES; ++plane)
-        q.enqueueWriteBuffer(bg, CL_FALSE, plane * bandPixels * 4, bandPixels * 4, planes.data() + plane * np + first);
-      k.setArg(bandArg, y0);
-      k.setArg(bandArg + 1, rows);
-      q.enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(std::size_t(g.width), std::size_t(rows)));
-      for (int c = 0; c < 3; ++c)
-        q.enqueueReadBuffer(bo, CL_FALSE, c * bandPixels * 4, bandPixels * 4, out.data() + c * np + first);
-      q.finish();
-      if (report && !exact && options.progress)
-        options.progress((y0 - rowBegin) / band + 1, (rowEnd - rowBegin + band - 1) / band);
-    }
-  };
   try {
-    const auto& ctx = s.rt.context();
     // Under mpirun, this rank's rows (ShadeOptions::firstRow, rowCount); the exact integrator's
     // split-sum pass always covers the whole frame.
     const int yBegin = exact ? 0 : std::clamp(options.firstRow, 0, g.height);
     const int yEnd = exact || options.rowCount < 0 ? g.height : std::min(g.height, yBegin + options.rowCount);
     if (peers_.empty()) {
-      shadeRows(s, yBegin, yEnd, true);
+      s.shadeRows(g, planes, yBegin, yEnd, exact, options, true, out);
     } else {
       // Row bands across the devices (DeviceSet); progress counts devices done.
       std::mutex progressMutex;
       int done = 0;
       devices_->run(std::size_t(yEnd - yBegin), 1, [&](std::size_t dev, std::size_t first, std::size_t count) {
-        shadeRows(dev == 0 ? s : *peers_[dev - 1]->s_, yBegin + int(first), yBegin + int(first + count), false);
+        State& st = dev == 0 ? s : *peers_[dev - 1]->s_;
+        st.shadeRows(g, planes, yBegin + int(first), yBegin + int(first + count), exact, options, false, out);
         std::lock_guard<std::mutex> lock(progressMutex);
         if (!exact && options.progress) options.progress(++done, int(devices_->size()));
       });
     }
-    if (exact && !s.exactReady) {
-      // The CDFs come from the full-resolution map the kernel reads, as it is on the device.
-      std::vector<float> env(3 * std::size_t(s.light->envW) * s.light->envH);
-      s.rt.queue().enqueueReadBuffer(s.light->background, CL_TRUE, 0, env.size() * 4, env.data());
-      const auto cdf = detail::environmentCdf(env, s.light->envW, s.light->envH);
-      s.envRows = readOnly(ctx, cdf.rows);
-      s.envCols = readOnly(ctx, cdf.cols);
-      s.envTexelP = readOnly(ctx, cdf.texelP);
-      s.envShare = cdf.share;
-      FeatureSet all;
-      all.sheen = all.ratifiedSheen = all.clearcoat = all.anisotropy = true;
-      EvalOptions o = s.options;
-      o.lobe = Lobe::All;
-      s.exactProgram = s.rt.program("ibl_exact.cl", materialDefines(o, all));
-      s.exactReady = true;
-    }
+    if (exact) s.prepareExact();
   } catch (const cl::Error&) {
     rethrowOpenCL("shading the G-buffer");
   }
-  if (exact) {
-    // The exact integrator reads the whole frame's planes: the split-sum pass's device copy when
-    // it held the frame in one band, else a copy of its own, which must fit one allocation.
-    cl::Buffer whole;
-    if (s.planesOnDevice.first == planes.size()) {
-      whole = s.planesOnDevice.second;
-    } else {
-      if (planes.size() * 4 > s.rt.info().maxAlloc)
-        throw Error(fmt::format("{}: a {}x{} G-buffer needs a {:.1f} GiB device buffer, but '{}' allows {:.1f} GiB; "
-                                "use a smaller {} or {}",
-                                optionWithValue("--ibl", "exact", true), g.width, g.height,
-                                double(planes.size() * 4) / (1u << 30), s.rt.info().name,
-                                double(s.rt.info().maxAlloc) / (1u << 30), optionName("--size"),
-                                optionWithValue("--ibl", "split-sum", true)));
-      try {
-        whole = readOnly(s.rt.context(), planes);
-      } catch (const cl::Error&) {
-        rethrowOpenCL("preparing the exact image-based light");
-      }
-    }
-    detail::ExactIblInputs in;
-    in.program = s.exactProgram;
-    in.gbuffer = &whole;
-    in.width = g.width;
-    in.height = g.height;
-    in.camera = s.scene.hasCamera || !g.camera ? cameraFor(s.scene, g.width, g.height) : cameraFor(*g.camera, g.width, g.height);
-    in.environment = &s.light->background;
-    in.rows = &s.envRows;
-    in.cols = &s.envCols;
-    in.texelP = &s.envTexelP;
-    in.envW = s.light->envW;
-    in.envH = s.light->envH;
-    in.envShare = s.envShare;
-    in.rotation = s.scene.environment.rotation;
-    in.sheenE = &s.light->sheenE;
-    in.sheenESize = s.light->sheenESize;
-    detail::integrateExactIbl(s.rt, in, planes, options, out, stats);
-  }
+  if (exact) s.integrateExact(g, options, out, stats);
   img.rgb.resize(3 * np);
   for (std::size_t i = 0; i < np; ++i)
     for (int c = 0; c < 3; ++c) img.rgb[3 * i + c] = out[c * np + i];

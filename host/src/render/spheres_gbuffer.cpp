@@ -12,6 +12,7 @@
 #include "brdfcl/render.hpp"
 #include "kernels/common/shading_layout.h"
 #include "render/camera.hpp"
+#include "runtime/opencl.hpp"
 
 namespace brdfcl {
 
@@ -44,9 +45,9 @@ Scene spheresScene() {
   return s;
 }
 
-GBuffer renderSpheresGBuffer(Runtime& rt, const Scene& scene, int width, int height) {
-  if (width < 1 || height < 1 || width > 16384 || height > 16384)
-    throw Error(fmt::format("image size {}x{} is out of range; use 1 to 16384 per side", width, height));
+namespace {
+// The 6 x 6 spheres of the built-in scene: a row per material feature, varied along the row.
+std::vector<brdfcl_sphere> sphereGrid() {
   std::vector<brdfcl_sphere> spheres;
   for (int row = 0; row < 6; ++row)
     for (int col = 0; col < 6; ++col) {
@@ -92,14 +93,21 @@ GBuffer renderSpheresGBuffer(Runtime& rt, const Scene& scene, int width, int hei
       for (int c = 0; c < 3; ++c) s.base_color[c] = base[c];
       spheres.push_back(s);
     }
+  return spheres;
+}
+
+// The G-buffer planes (GB_PLANES of width x height) of `spheres` ray-cast on the device, in bands
+// of rows that fit its largest allocation.
+std::vector<float> castSpheres(Runtime& rt, const Scene& scene, std::vector<brdfcl_sphere> spheres, int width,
+                               int height) {
   const std::size_t np = std::size_t(width) * height;
   std::vector<float> planes(GB_PLANES * np);
   try {
-    auto program = rt.program("gbuffer_spheres.cl");
-    cl::Buffer bs(rt.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, spheres.size() * sizeof(brdfcl_sphere),
+    auto program = rt.opencl().program("gbuffer_spheres.cl");
+    cl::Buffer bs(rt.opencl().context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, spheres.size() * sizeof(brdfcl_sphere),
                   spheres.data());
     const int band = bandRows(rt.info(), width, GB_PLANES * sizeof(float));
-    cl::Buffer out(rt.context(), CL_MEM_WRITE_ONLY, std::size_t(GB_PLANES) * width * std::min(band, height) * 4);
+    cl::Buffer out(rt.opencl().context(), CL_MEM_WRITE_ONLY, std::size_t(GB_PLANES) * width * std::min(band, height) * 4);
     cl::Kernel k(program, "gbuffer_spheres");
     for (int y0 = 0; y0 < height; y0 += band) {
       const int rows = std::min(band, height - y0);
@@ -112,15 +120,21 @@ GBuffer renderSpheresGBuffer(Runtime& rt, const Scene& scene, int width, int hei
       k.setArg(5, rows);
       k.setArg(6, cameraFor(scene, width, height));
       k.setArg(7, out);
-      rt.queue().enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(std::size_t(width), std::size_t(rows)));
+      rt.opencl().queue().enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(std::size_t(width), std::size_t(rows)));
       for (int plane = 0; plane < GB_PLANES; ++plane)
-        rt.queue().enqueueReadBuffer(out, CL_FALSE, plane * bandPixels * 4, bandPixels * 4,
+        rt.opencl().queue().enqueueReadBuffer(out, CL_FALSE, plane * bandPixels * 4, bandPixels * 4,
                                      planes.data() + plane * np + std::size_t(y0) * width);
-      rt.queue().finish();
+      rt.opencl().queue().finish();
     }
   } catch (const cl::Error&) {
     rethrowOpenCL("ray-casting the spheres scene");
   }
+  return planes;
+}
+
+// The G-buffer held in `planes` (the kernel's plane order, layout shading_layout.h).
+GBuffer gbufferFromPlanes(const std::vector<float>& planes, int width, int height) {
+  const std::size_t np = std::size_t(width) * height;
   GBuffer g;
   g.width = width;
   g.height = height;
@@ -145,6 +159,14 @@ GBuffer renderSpheresGBuffer(Runtime& rt, const Scene& scene, int width, int hei
   g.clearcoatN = get3(GB_CCN_X);
   g.anisotropyStrength = get1(GB_ANISO_STRENGTH);
   g.anisotropyRotation = get1(GB_ANISO_ROTATION);
+  return g;
+}
+}  // namespace
+
+GBuffer renderSpheresGBuffer(Runtime& rt, const Scene& scene, int width, int height) {
+  if (width < 1 || height < 1 || width > 16384 || height > 16384)
+    throw Error(fmt::format("image size {}x{} is out of range; use 1 to 16384 per side", width, height));
+  GBuffer g = gbufferFromPlanes(castSpheres(rt, scene, sphereGrid(), width, height), width, height);
   // Rays start 1e-4 along the ray (the kernel's hit threshold), a bound too small to record.
   g.camera = gbufferCamera(cameraFor(scene, width, height), scene.fovDegrees);
   return g;

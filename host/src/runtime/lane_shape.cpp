@@ -7,7 +7,7 @@
 #include <fmt/format.h>
 
 #include "brdfcl/error.hpp"
-#include "brdfcl/runtime.hpp"
+#include "runtime/opencl.hpp"
 
 namespace brdfcl {
 

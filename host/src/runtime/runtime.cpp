@@ -1,6 +1,6 @@
 // OpenCL device selection, context/queue setup and the program cache. Kernel sources come from
 // the embedded copy of kernels/, with #include "..." lines expanded here (OpenCL has no virtual FS).
-#include "brdfcl/runtime.hpp"
+#include "runtime/opencl.hpp"
 
 #include <cstdlib>
 #include <mutex>
@@ -179,7 +179,13 @@ std::string kernelSource(const std::string& kernelFile) {
   return out;
 }
 
-Runtime::Runtime(const std::string& selectorArg) {
+Runtime::Runtime(const std::string& selector) : cl_(std::make_unique<OpenCL>(selector)) {}
+Runtime::~Runtime() = default;
+const DeviceInfo& Runtime::info() const { return cl_->info_; }
+std::size_t Runtime::programsFromDiskCache() const { return cl_->fromDisk_; }
+const std::string& Runtime::standardOption() const { return cl_->clStd_; }
+
+Runtime::OpenCL::OpenCL(const std::string& selectorArg) {
   std::string selector = selectorArg;
   // The message names where the selector came from: a stale BRDFCL_DEVICE in a shell profile
   // is otherwise hard to spot.
@@ -231,7 +237,7 @@ namespace {
 constexpr std::size_t kCachedPrograms = 256;
 }  // namespace
 
-cl::Program Runtime::program(const std::string& kernelFile, const std::string& defines) {
+cl::Program Runtime::OpenCL::program(const std::string& kernelFile, const std::string& defines) {
   std::string source = kernelSource(kernelFile);
   // -w: PoCL prints clang warnings (e.g. the float16 ABI note on AVX2) to stderr; real
   // problems are errors and reach the user through the build log.

@@ -10,7 +10,7 @@
 
 #include "brdfcl/io.hpp"
 #include "brdfcl/material.hpp"
-#include "brdfcl/plot.hpp"
+#include "plot/plot.hpp"
 #include "brdfcl/runtime.hpp"
 
 namespace brdfcl {

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "brdfcl/plot.hpp"
+#include "plot/plot.hpp"
 
 namespace brdfcl {
 
