@@ -1,4 +1,4 @@
-/* Inlinable exp2, log2, exp and log1p over width-generic lanes. PoCL's builtins are accurate but
+/* Inlinable exp2, log2, exp, log1p and rsqrt over width-generic lanes. PoCL's builtins are accurate but
    heavy (its log2 alone costs more than a whole Charlie lobe in LLVM's inline budget), and C++
    peers compiling these headers get the same code. Accuracy, measured against double over the
    ranges the BRDF uses (tests/unit/test_fastmath.cpp): <= 2 ulp for exp2 and log2 on normal
@@ -72,6 +72,18 @@ BRDF_FN realw brdf_log1p(realw u) {
   realw f = select(u * s + (s - 1.0f), m - 1.0f, e > 24.0f);
   realw r = e * 0.69314718056f + brdf_ln1p_reduced(f);
   return select(r, u, isinf(u));
+}
+
+/* 1/sqrt(x) for normal x > 0 without a square root or a division: the classic bit-pattern
+   estimate (Lomont 2003's constant, relative error <= 1.8e-3) and three Newton steps, which leave
+   float's rounding (2.2 ulp at most without fma). rsqrt() itself is a sqrt and a correctly rounded division where the
+   program is built with -cl-fp32-correctly-rounded-divide-sqrt. */
+BRDF_FN realw brdf_rsqrt(realw x) {
+  realw y = AS_REALW(0x5f375a86 - (AS_INTW(x) >> 1));
+  realw hx = 0.5f * x;
+  y = y * (1.5f - hx * y * y);
+  y = y * (1.5f - hx * y * y);
+  return y * (1.5f - hx * y * y);
 }
 
 #endif
