@@ -131,7 +131,8 @@ BRDF_FN lobe_value lobe_sheen(const material_lanes m, lobe_geometry g) {
   out.colour.r = m.sheen_r;
   out.colour.g = m.sheen_g;
   out.colour.b = m.sheen_b;
-  out.weight = m.sheen_weight * dv;
+  /* sheen_weight is 1 but on draft lanes: a batch without them neither reads nor multiplies it. */
+  out.weight = BRDFCL_HAS_DRAFT ? m.sheen_weight * dv : dv;
   return out;
 }
 
