@@ -43,7 +43,7 @@ BRDF_FN lobe_geometry lobe_geometry_of(vec3w L, vec3w V) {
   g.hxy2 = h.x * h.x + h.y * h.y;
   g.hn2 = h.z * h.z;
   g.h2 = g.hxy2 + g.hn2;
-  realw inv_h = rsqrt(g.h2);
+  realw inv_h = brdf_rsqrt(g.h2);
   /* 1 - V.H = |V - H|^2 / 2 for unit vectors: no cancellation as H -> V. */
   realw dx = V.x - h.x * inv_h, dy = V.y - h.y * inv_h, dz = V.z - h.z * inv_h;
   g.w = pow5w(0.5f * (dx * dx + dy * dy + dz * dz));
@@ -131,7 +131,8 @@ BRDF_FN lobe_value lobe_sheen(const material_lanes m, lobe_geometry g) {
   out.colour.r = m.sheen_r;
   out.colour.g = m.sheen_g;
   out.colour.b = m.sheen_b;
-  out.weight = m.sheen_weight * dv;
+  /* sheen_weight is 1 but on draft lanes: a batch without them neither reads nor multiplies it. */
+  out.weight = BRDFCL_HAS_DRAFT ? m.sheen_weight * dv : dv;
   return out;
 }
 

@@ -1,4 +1,4 @@
-/* Inlinable exp2, log2, exp and log1p over width-generic lanes. PoCL's builtins are accurate but
+/* Inlinable exp2, log2, exp, log1p and rsqrt over width-generic lanes. PoCL's builtins are accurate but
    heavy (its log2 alone costs more than a whole Charlie lobe in LLVM's inline budget), and C++
    peers compiling these headers get the same code. Accuracy, measured against double over the
    ranges the BRDF uses (tests/unit/test_fastmath.cpp): <= 2 ulp for exp2 and log2 on normal
@@ -24,9 +24,26 @@ BRDF_FN realw brdf_exp2(realw y) {
 
 BRDF_FN realw brdf_exp(realw x) { return brdf_exp2(x * 1.44269504089f); }
 
-/* log2 x for x > 0: x = 2^e m with m in [sqrt(1/2), sqrt(2)), ln m = 2 atanh(t), t = (m-1)/(m+1),
-   |t| <= 0.1716, by its odd series to t^9 (truncation 7e-10). x below FLT_MIN (0 or subnormal)
-   gives -inf, so that pow(0, c) = exp2(c log2 0) = 0. */
+/* ln(1 + f) / f on the reduced range f in [sqrt(1/2) - 1, sqrt(2) - 1]: a degree-9 polynomial,
+   minimax in relative error (4.1e-9) fitted for these float coefficients; ln(1 + f) = f P(f)
+   then rounds to <= 1.6 ulp. A polynomial in f = m - 1 needs no division (an atanh series in
+   (m - 1)/(m + 1) would need one a call). */
+BRDF_FN realw brdf_ln1p_reduced(realw f) {
+  return f * (1.0f + f * (-4.999998808e-01f + f * (3.333332539e-01f + f * (-2.500158548e-01f +
+         f * (2.000196874e-01f + f * (-1.660900861e-01f + f * (1.418182403e-01f + f * (-1.324348301e-01f +
+         f * (1.290474683e-01f + f * -7.621168345e-02f)))))))));
+}
+
+/* log2(1 + f) on the same range: the same fit for log2 (the coefficients above times log2 e,
+   refitted), so that log2 near 1 keeps its relative accuracy without a rounded scaling. */
+BRDF_FN realw brdf_log2_1p_reduced(realw f) {
+  return f * (1.442695022e+00f + f * (-7.213473320e-01f + f * (4.808982313e-01f + f * (-3.606966436e-01f +
+         f * (2.885674238e-01f + f * (-2.396173477e-01f + f * (2.046004683e-01f + f * (-1.910630763e-01f +
+         f * (1.861761361e-01f + f * -1.099502221e-01f)))))))));
+}
+
+/* log2 x for x > 0: x = 2^e m with m in [sqrt(1/2), sqrt(2)), log2 x = e + log2(1 + (m - 1)),
+   m - 1 exact. x below FLT_MIN (0 or subnormal) gives -inf, so that pow(0, c) = exp2(c log2 0) = 0. */
 BRDF_FN realw brdf_log2(realw x) {
   intw bits = AS_INTW(x);
   realw e = CONVERT_REALW(((bits >> 23) & 0xff) - 127);
@@ -34,19 +51,39 @@ BRDF_FN realw brdf_log2(realw x) {
   intw big = m > 1.41421356f;
   m = select(m, m * 0.5f, big);
   e = select(e, e + 1.0f, big);
-  realw t = (m - 1.0f) / (m + 1.0f), t2 = t * t;
-  realw ln_m = t * (2.0f + t2 * (0.66666666667f + t2 * (0.4f + t2 * (0.28571428571f + t2 * 0.22222222222f))));
-  realw r = e + ln_m * 1.44269504089f;
+  realw r = e + brdf_log2_1p_reduced(m - 1.0f);
   return select(r, (realw)(-INFINITY), x < 1.17549435e-38f);
 }
 
-/* log(1 + u) for u >= 0, exact for small u by the classic correction log(w) u / (w - 1) with
-   w = 1 + u rounded (Goldberg 1991); +inf stays +inf. */
+/* log(1 + u) for u >= 0 without a division: w = 1 + u rounded gives the exponent e (with
+   m in [sqrt(1/2), sqrt(2))), and f = (1 + u) 2^-e - 1 is formed from u itself, u 2^-e + (2^-e - 1):
+   the scaling is exact and the sum rounds once, so the rounding of w is not inherited (exact for
+   small u; f = u when e = 0). Above 2^24 that rounding is below float's resolution of the result
+   and f = m - 1. +inf stays +inf. */
 BRDF_FN realw brdf_log1p(realw u) {
   realw w = 1.0f + u;
-  realw r = brdf_log2(w) * 0.69314718056f * (u / (w - 1.0f));
-  r = select(r, u, w == 1.0f);
+  intw bits = AS_INTW(w);
+  realw e = CONVERT_REALW(((bits >> 23) & 0xff) - 127);
+  realw m = AS_REALW((bits & 0x007fffff) | 0x3f800000);
+  intw big = m > 1.41421356f;
+  m = select(m, m * 0.5f, big);
+  e = select(e, e + 1.0f, big);
+  realw s = AS_REALW((127 - CONVERT_INTW(min(e, 25.0f))) << 23); /* 2^-e */
+  realw f = select(u * s + (s - 1.0f), m - 1.0f, e > 24.0f);
+  realw r = e * 0.69314718056f + brdf_ln1p_reduced(f);
   return select(r, u, isinf(u));
+}
+
+/* 1/sqrt(x) for normal x > 0 without a square root or a division: the classic bit-pattern
+   estimate (Lomont 2003's constant, relative error <= 1.8e-3) and three Newton steps, which leave
+   float's rounding (2.2 ulp at most without fma). rsqrt() itself is a sqrt and a correctly rounded division where the
+   program is built with -cl-fp32-correctly-rounded-divide-sqrt. */
+BRDF_FN realw brdf_rsqrt(realw x) {
+  realw y = AS_REALW(0x5f375a86 - (AS_INTW(x) >> 1));
+  realw hx = 0.5f * x;
+  y = y * (1.5f - hx * y * y);
+  y = y * (1.5f - hx * y * y);
+  return y * (1.5f - hx * y * y);
 }
 
 #endif
