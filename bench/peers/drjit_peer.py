@@ -14,6 +14,8 @@ import time
 
 import numpy as np
 
+from peer_pairs import make_pairs
+
 # kernels/common/material_layout.h and kernels/brdf/material.h
 MIN_ALPHA = 1.0e-3
 MIN_SHEEN_ALPHA = 1.0e-3
@@ -26,19 +28,6 @@ BRDFCL_DEVICE = []  # --device DEV for every brdfcl command, from --device
 def fail(message):
     print(f"drjit_peer: {message}", file=sys.stderr)
     sys.exit(2)
-
-
-def make_pairs(n, seed):
-    # The domain of brdfcl's own workload: N.L and N.V in [0.01, 1), uniform azimuths (as
-    # mitsuba_peer.py draws them).
-    rng = np.random.default_rng(seed)
-    planes = []
-    for _ in range(2):  # L, then V
-        z = rng.uniform(0.01, 1.0, n).astype(np.float32)
-        phi = rng.uniform(0.0, 2 * np.pi, n).astype(np.float32)
-        s = np.sqrt(1.0 - z * z)
-        planes += [s * np.cos(phi), s * np.sin(phi), z]
-    return np.stack(planes).astype(np.float32)  # 6 x n: L.xyz, V.xyz
 
 
 def check_pairs(n, seed):

@@ -13,23 +13,12 @@ import time
 
 import numpy as np
 
+from peer_pairs import make_pairs
+
 
 def fail(message):
     print(f"mitsuba_peer: {message}", file=sys.stderr)
     sys.exit(2)
-
-
-def make_pairs(n, seed):
-    # The domain of brdfcl's own workload (bench/peers/workload.cpp): N.L and N.V in [0.01, 1),
-    # azimuths uniform; a fixed seed so that every run sees the same pairs.
-    rng = np.random.default_rng(seed)
-    planes = []
-    for _ in range(2):  # L, then V
-        z = rng.uniform(0.01, 1.0, n).astype(np.float32)
-        phi = rng.uniform(0.0, 2 * np.pi, n).astype(np.float32)
-        s = np.sqrt(1.0 - z * z)
-        planes += [s * np.cos(phi), s * np.sin(phi), z]
-    return np.stack(planes).astype(np.float32)  # 6 x n: L.xyz, V.xyz
 
 
 def run_brdfcl(brdfcl, lobe, pairs_path, runs):

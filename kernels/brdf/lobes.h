@@ -44,9 +44,10 @@ BRDF_FN lobe_geometry lobe_geometry_of(vec3w L, vec3w V) {
   g.hn2 = h.z * h.z;
   g.h2 = g.hxy2 + g.hn2;
   realw inv_h = brdf_rsqrt(g.h2);
-  /* 1 - V.H = |V - H|^2 / 2 for unit vectors: no cancellation as H -> V. */
+  /* 1 - V.H = |V - H|^2 / 2 for unit vectors: no cancellation as H -> V. At most 1 (V.H >= 0):
+     the rounding of inv_h must not take it above, where 1 - F would turn negative. */
   realw dx = V.x - h.x * inv_h, dy = V.y - h.y * inv_h, dz = V.z - h.z * inv_h;
-  g.w = pow5w(0.5f * (dx * dx + dy * dy + dz * dz));
+  g.w = pow5w(min(0.5f * (dx * dx + dy * dy + dz * dz), 1.0f));
   return g;
 }
 

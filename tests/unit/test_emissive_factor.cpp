@@ -10,8 +10,8 @@
 #include "brdfcl/error.hpp"
 #include "brdfcl/gltf.hpp"
 #include "brdfcl/io.hpp"
+#include "cli_child.hpp"
 #include "gltf_builder.hpp"
-#include "process.hpp"
 #include "support.hpp"
 
 namespace {
@@ -49,11 +49,7 @@ class EmissiveFactor : public ::testing::Test {
     writeFile(dir_.path(name), bytes);
     return dir_.path(name);
   }
-  RunResult run(const std::vector<std::string>& args) const {
-    std::vector<std::string> argv{BRDFCL_CLI_PATH};
-    argv.insert(argv.end(), args.begin(), args.end());
-    return brdfcl::test::runProcess(argv, dir_.dir());
-  }
+  RunResult run(const std::vector<std::string>& args) const { return brdfcl::test::runCli(dir_, args); }
 };
 
 TEST_F(EmissiveFactor, MaterialsFileClampsAboveOneWithAWarningEach) {
