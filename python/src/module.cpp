@@ -290,6 +290,18 @@ nb::ndarray<nb::numpy, float> imageToNumpy(brdfcl::Image&& img) {
 
 }  // namespace
 
+// Float rows normalized by the library's reader arithmetic (brdfcl::normalizeDirection), for the
+// calls whose CLI counterparts read their directions from files.
+static std::vector<float> unitRows(const float* rows, std::size_t n, const char* name) {
+  std::vector<float> out(3 * n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const double d[3] = {rows[3 * i], rows[3 * i + 1], rows[3 * i + 2]};
+    if (!brdfcl::normalizeDirection(d, &out[3 * i]))
+      throw Error(std::string(name) + " row " + std::to_string(i) + " is not a finite non-zero direction");
+  }
+  return out;
+}
+
 NB_MODULE(_core, m) {
   m.doc() = "brdfcl's C++ host library (brdfcl_core); use the brdfcl package, not this module.";
   // Every message names options as this process's callers write them: lobe=, not --lobe.
@@ -587,8 +599,11 @@ NB_MODULE(_core, m) {
             if (held.shape(0) != n) throw Error("internal: sample indices of the wrong length", 3);
             idx = held.data();
           }
+          // Rows normalized as the CLI's readers normalize them, so that the same numbers give the
+          // same bits as `brdfcl sample`.
+          const std::vector<float> unitV = unitRows(V.data(), n, "V");
           nb::gil_scoped_release release;
-          d.evaluator(o).sample(mats.list, idx, V.data(), u.data(), n, out.data());
+          d.evaluator(o).sample(mats.list, idx, unitV.data(), u.data(), n, out.data());
         },
         "device"_a, "materials"_a, "V"_a.noconvert(), "index"_a.none(), "u"_a.noconvert(), "out"_a.noconvert(),
         "options"_a);
@@ -599,8 +614,8 @@ NB_MODULE(_core, m) {
           if (L.shape(0) != n || L.shape(1) != 3 || V.shape(1) != 3 || out.size() != n)
             throw Error("internal: pdf arrays of the wrong shape", 3);
           brdfcl::Samples s;
-          s.L.assign(L.data(), L.data() + 3 * n);
-          s.V.assign(V.data(), V.data() + 3 * n);
+          s.L = unitRows(L.data(), n, "L");
+          s.V = unitRows(V.data(), n, "V");
           if (!index.is_none()) {
             const Indices held = nb::cast<Indices>(index, false);
             if (held.shape(0) != n) throw Error("internal: pdf indices of the wrong length", 3);
