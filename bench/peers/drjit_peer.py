@@ -14,7 +14,7 @@ import time
 
 import numpy as np
 
-from peer_pairs import make_pairs
+from peer_pairs import make_pairs, median_seconds
 
 # kernels/common/material_layout.h and kernels/brdf/material.h
 MIN_ALPHA = 1.0e-3
@@ -297,12 +297,7 @@ class Side:
         return f
 
     def median_seconds(self, runs):
-        t = []
-        for _ in range(runs):
-            t0 = time.perf_counter()
-            self.run()
-            t.append(time.perf_counter() - t0)
-        return statistics.median(t)
+        return median_seconds(self.run, runs)
 
     def kernel_seconds(self, runs):
         """CUDA: the kernels' own time from Dr.Jit's history (launch to completion on the device)."""

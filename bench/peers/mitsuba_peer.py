@@ -13,7 +13,7 @@ import time
 
 import numpy as np
 
-from peer_pairs import make_pairs
+from peer_pairs import make_pairs, median_seconds
 
 
 def fail(message):
@@ -115,12 +115,7 @@ class MitsubaSide:
         return f
 
     def median_seconds(self, runs):
-        t = []
-        for _ in range(runs):
-            t0 = time.perf_counter()
-            self.run()
-            t.append(time.perf_counter() - t0)
-        return statistics.median(t)
+        return median_seconds(self.run, runs)
 
 
 def main():

@@ -1,6 +1,9 @@
-# The direction pairs both outside peers (mitsuba_peer.py, drjit_peer.py) time and check: the
-# domain of brdfcl's own workload (bench/peers/workload.cpp), N.L and N.V in [0.01, 1) with uniform
-# azimuths, from a fixed seed so that every run sees the same pairs.
+# What both outside peers (mitsuba_peer.py, drjit_peer.py) share: the direction pairs they time
+# and check, the domain of brdfcl's own workload (bench/peers/workload.cpp: N.L and N.V in [0.01, 1)
+# with uniform azimuths, from a fixed seed so that every run sees the same pairs), and the timing.
+import statistics
+import time
+
 import numpy as np
 
 
@@ -13,3 +16,13 @@ def make_pairs(n, seed):
         s = np.sqrt(1.0 - z * z)
         planes += [s * np.cos(phi), s * np.sin(phi), z]
     return np.stack(planes).astype(np.float32)  # 6 x n: L.xyz, V.xyz
+
+
+def median_seconds(run, runs):
+    """The median wall time of `runs` calls of `run` (which waits for its own results)."""
+    t = []
+    for _ in range(runs):
+        t0 = time.perf_counter()
+        run()
+        t.append(time.perf_counter() - t0)
+    return statistics.median(t)
