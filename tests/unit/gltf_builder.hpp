@@ -296,4 +296,13 @@ class GltfBuilder {
   }
 };
 
+// A unit quad (two triangles, one mesh node) in a scene of its own, drawn with `material`.
+inline GltfBuilder quadWithMaterial(const nlohmann::json& material) {
+  GltfBuilder b;
+  const int m = b.addMaterial(material);
+  const int mesh = b.addTriangles({0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0}, {0, 1, 2, 0, 2, 3}, m);
+  b.addScene({b.addMeshNode(mesh)});
+  return b;
+}
+
 }  // namespace brdfcl::test

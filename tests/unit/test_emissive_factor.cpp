@@ -18,7 +18,7 @@ namespace {
 
 namespace fs = std::filesystem;
 using brdfcl::test::errorOf;
-using brdfcl::test::GltfBuilder;
+using brdfcl::test::quadWithMaterial;
 using brdfcl::test::RunResult;
 using brdfcl::test::ScratchDir;
 using brdfcl::test::writeFile;
@@ -32,14 +32,6 @@ std::string warningText(const std::string& source, const std::string& component,
 std::string strictText(const std::string& source, const std::string& component, const std::string& value) {
   return source + ": materials[0].emissiveFactor[" + component + "]: " + value + " is above 1, the glTF schema's maximum; " +
          kHint + " (an error under --strict)";
-}
-
-GltfBuilder quadWith(const nlohmann::json& material) {
-  GltfBuilder b;
-  const int m = b.addMaterial(material);
-  const int mesh = b.addTriangles({0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0}, {0, 1, 2, 0, 2, 3}, m);
-  b.addScene({b.addMeshNode(mesh)});
-  return b;
 }
 
 class EmissiveFactor : public ::testing::Test {
@@ -76,7 +68,7 @@ TEST_F(EmissiveFactor, MaterialsFileRefusesAboveOneUnderStrictAndNegativeAlways)
 }
 
 TEST_F(EmissiveFactor, GltfLoaderClampsWarnsAndRefusesAlike) {
-  const std::string p = quadWith({{"emissiveFactor", {0, 2, 0.5}}}).write(dir_.dir(), "a.gltf");
+  const std::string p = quadWithMaterial({{"emissiveFactor", {0, 2, 0.5}}}).write(dir_.dir(), "a.gltf");
   const brdfcl::gltf::Asset a = brdfcl::gltf::load(p);
   ASSERT_EQ(a.materials.size(), 1u);
   EXPECT_EQ(a.materials[0].emissiveFactor, (std::array<float, 3>{0.0f, 1.0f, 0.5f}));
@@ -85,7 +77,7 @@ TEST_F(EmissiveFactor, GltfLoaderClampsWarnsAndRefusesAlike) {
   brdfcl::gltf::LoadOptions strict;
   strict.strict = true;
   EXPECT_EQ(errorOf([&] { brdfcl::gltf::load(p, strict); }), strictText(p, "1", "2"));
-  const std::string n = quadWith({{"emissiveFactor", {0, 0, -0.5}}}).write(dir_.dir(), "n.gltf");
+  const std::string n = quadWithMaterial({{"emissiveFactor", {0, 0, -0.5}}}).write(dir_.dir(), "n.gltf");
   EXPECT_EQ(errorOf([&] { brdfcl::gltf::load(n); }), n + ": materials[0].emissiveFactor[2]: expected a number >= 0, got -0.5");
 }
 
@@ -102,7 +94,7 @@ TEST_F(EmissiveFactor, CliWarnsOnceAndStrictIsOneLineExitTwoWithNoOutput) {
   EXPECT_EQ(strict.errorLines(), std::vector<std::string>{"brdfcl: " + strictText(m, "0", "3")});
   EXPECT_FALSE(fs::exists(out));
 
-  const std::string g = quadWith({{"emissiveFactor", {0, 0, 1.5}}}).write(dir_.dir(), "g.gltf");
+  const std::string g = quadWithMaterial({{"emissiveFactor", {0, 0, 1.5}}}).write(dir_.dir(), "g.gltf");
   const RunResult gs = run({"gbuffer", "--gltf", g, "--size", "8x8", "--out", dir_.path("g.exr"), "--strict"});
   EXPECT_EQ(gs.status, 2) << gs.describe();
   EXPECT_EQ(gs.errorLines(), std::vector<std::string>{"brdfcl: " + strictText(g, "2", "1.5")});

@@ -27,6 +27,7 @@ using brdfcl::MaterialReadOptions;
 using brdfcl::Samples;
 using brdfcl::test::errorOf;
 using brdfcl::test::GltfBuilder;
+using brdfcl::test::quadWithMaterial;
 using brdfcl::test::RunResult;
 using brdfcl::test::ScratchDir;
 
@@ -294,14 +295,6 @@ TEST(MaterialsKeys, GlbIsReadThroughItsJsonChunk) {
 // glTF assets: the same checks, through Asset::warnings and LoadOptions::strict
 
 namespace {
-GltfBuilder quadWithMaterial(const nlohmann::json& material) {
-  GltfBuilder b;
-  const int m = b.addMaterial(material);
-  const int mesh = b.addTriangles({0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0}, {0, 1, 2, 0, 2, 3}, m);
-  b.addScene({b.addMeshNode(mesh)});
-  return b;
-}
-
 std::vector<std::string> keyWarnings(const brdfcl::gltf::Asset& a) {
   std::vector<std::string> out;
   for (const auto& w : a.warnings)
