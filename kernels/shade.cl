@@ -92,6 +92,11 @@ __kernel void shade(__global const float* restrict gb, int width, int height, in
     result += ibl * clamp(GB(GB_OCCLUSION), 0.0f, 1.0f);
     /* KHR_materials_clearcoat "Emission": the coat darkens what is below it. */
     result += (float3)(GB(GB_EMISSIVE_R), GB(GB_EMISSIVE_G), GB(GB_EMISSIVE_B)) * emission_weight;
+#if BRDFCL_PROFILE == BRDFCL_PROFILE_BABYLON
+    /* pbrBlockFinalColorComposition clamps the composed colour at 0: the sheen's albedo scaling
+       1 - max3(c) E turns negative where E > 1 at grazing N.V. */
+    result = max(result, (float3)(0.0f));
+#endif
   }
   out[i] = result.x;
   out[np + i] = result.y;

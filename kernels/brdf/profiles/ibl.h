@@ -179,10 +179,15 @@ static inline float3 profile_ibl(const ibl_env* e, const ibl_frame* f, brdfcl_ma
 }
 
 #elif BRDFCL_PROFILE == BRDFCL_PROFILE_BABYLON
-/* PBR blocks: reflectance F0 A + B with the multiscatter energy factor, diffuse x (1 - reflectance)
-   (brdfcl's reading, docs/profiles.md), sheen from the GGX chain times E with view-only scaling,
-   the coat's radiance times 0.04 A + B over (1 - Fc) on everything below. Radiance is read at
-   sqrt(alpha_G) of each lobe; (A, B) and E are Babylon's BRDF texture: A = .y - .x, B = .x, E = .b. */
+/* PBR blocks (pbrBlockReflection, pbrBlockReflectance, pbrBlockSheen, pbrBlockClearcoat,
+   pbrBlockFinalLitComponents) under the glTF loader's defines: the base radiance, read at
+   sqrt(alpha_G), mixed towards the irradiance by alpha_G (MIX_IBL_RADIANCE_WITH_IRRADIANCE), times
+   f0 A + B and the multiscatter factor; the irradiance times the legacy surface albedo
+   b (1 - f0_ior)(1 - m), not times 1 - reflectance; sheen from the GGX chain at sqrt(alpha_G,s)
+   times c E with view-only scaling; the coat's radiance times cc (0.04 A + B), everything below
+   times 1 - cc F(N_c.V). N.V is |N.V| + 1e-7 (absEps); reflection and irradiance about the
+   anisotropic bent normal, with no mix towards it. (A, B) and E are Babylon's BRDF texture:
+   A = .y - .x, B = .x, E = .b. */
 static inline float3 babylon_brdf(const ibl_env* e, float nv, float r) {
   __global const float* lut = e->tables + e->e_size * e->e_size + 2 * BRDFCL_DFG_SIZE * BRDFCL_DFG_SIZE;
   return (float3)(BRDF_Babylon(lut, nv, r, 0), BRDF_Babylon(lut, nv, r, 1), BRDF_Babylon(lut, nv, r, 2));
@@ -190,19 +195,17 @@ static inline float3 babylon_brdf(const ibl_env* e, float nv, float r) {
 
 static inline float3 profile_ibl(const ibl_env* e, const ibl_frame* f, brdfcl_material_params q,
                                  const brdfcl_material* p, float* emission_weight) {
-  float nv = max(dot(f->N, f->V), 1e-4f), r = q.roughness;
+  float nv = fabs(dot(f->N, f->V)) + 1e-7f, r = q.roughness, alpha_g = r * r + 0.0005f;
   float3 base = (float3)(q.base_color[0], q.base_color[1], q.base_color[2]);
-  float3 R = reflect_v(f->V, f->N);
-  if (q.anisotropy_strength > 0.0f) {
-    float3 bn = bent_normal_spec(f, q.anisotropy_strength, r);
-    R = normalize(mix(reflect_v(f->V, bn), bn, r * r));
-  }
+  float3 n = q.anisotropy_strength > 0.0f ? bent_normal_spec(f, q.anisotropy_strength, r) : f->N;
+  float3 irr = ibl_irradiance(e, n);
   float3 t = babylon_brdf(e, nv, r);
   float2 ab = (float2)(t.y - t.x, t.x);
   float3 f0 = mix((float3)(p->ior_f0), base, q.metallic);
   float3 refl = f0 * ab.x + ab.y;
-  float3 spec = ibl_radiance(e, R, sqrt(r * r + 0.0005f)) * refl * (1.0f + f0 * (1.0f / (ab.x + ab.y) - 1.0f));
-  float3 diffuse = ibl_irradiance(e, f->N) * (1.0f - q.metallic) * base * (1.0f - refl);
+  float3 Ls = mix(ibl_radiance(e, reflect_v(f->V, n), sqrt(alpha_g)), irr, alpha_g);
+  float3 spec = Ls * refl * (1.0f + f0 * (1.0f / (ab.x + ab.y) - 1.0f));
+  float3 diffuse = irr * (1.0f - q.metallic) * (1.0f - p->ior_f0) * base;
   float3 sheen = (float3)(0.0f);
   float sheen_max = brdfcl_max3(q.sheen_color);
   if (sheen_max > 0.0f) {
@@ -210,9 +213,9 @@ static inline float3 profile_ibl(const ibl_env* e, const ibl_frame* f, brdfcl_ma
     spec *= 1.0f - sheen_max * Es;
     diffuse *= 1.0f - sheen_max * Es;
     sheen = (float3)(q.sheen_color[0], q.sheen_color[1], q.sheen_color[2]) * Es *
-            ibl_radiance(e, reflect_v(f->V, f->N), sqrt(p->sheen_alpha));
+            ibl_radiance(e, reflect_v(f->V, n), sqrt(p->sheen_alpha));
   }
-  float ncv = max(dot(f->Nc, f->V), 1e-4f);
+  float ncv = fabs(dot(f->Nc, f->V)) + 1e-7f;
   float Fc = q.clearcoat * F_Schlick90(0.04f, 1.0f, s5f(ncv));
   float3 tc = babylon_brdf(e, ncv, q.clearcoat_roughness);
   float2 abc = (float2)(tc.y - tc.x, tc.x);
