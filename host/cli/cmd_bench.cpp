@@ -179,6 +179,12 @@ void benchSample(BenchArgs& a) {
   const auto t0 = Clock::now();
   Runtime rt(a.device);
   const bench::Workload w = bench::makeWorkload(a.lobe, 1, a.materials);
+  Evaluator ev(rt, w.options);
+  // Before the rows are allocated: the batch is one launch, as the evaluation kernel's is.
+  if (a.n > ev.launchLimit())
+    throw Error(fmt::format("--op sample: {} rows are more than one launch of the sampler takes on this device ({} at "
+                            "most); lower --n or use a smaller --pairs file",
+                            a.n, ev.launchLimit()));
   std::vector<float> view(3 * a.n), u(3 * a.n);
   std::vector<std::uint32_t> index(a.n);
   std::uint64_t state = 0x9e3779b97f4a7c15ull;
@@ -197,7 +203,6 @@ void benchSample(BenchArgs& a) {
     index[i] = indices.empty() ? std::uint32_t(next() % a.materials) : indices[i];
   }
   Evaluator::drawUniforms(1, 0, a.n, u.data());
-  Evaluator ev(rt, w.options);
   SampleBatch b(rt, ev, w.materials, view, index, u);
   b.run();  // warm-up; also builds (or loads from PoCL's cache) the program
   const double firstRun = std::chrono::duration<double>(Clock::now() - t0).count();

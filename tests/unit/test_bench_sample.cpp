@@ -107,6 +107,14 @@ TEST(BenchSample, BadOptionsAreOneLineErrors) {
        "brdfcl: --sheen-e-out goes with --op eval; drop it"},
   };
   brdfcl::test::writeFile(dir.path("p.f32"), std::string(24, '\0'));
+  {
+    // Refused before the rows are allocated: 2^23 is above every device's launch (at most 2^22 rows).
+    const RunResult r = cli(dir, {"bench", "--op", "sample", "--n", "8388608", "--runs", "1"});
+    EXPECT_EQ(r.status, 2) << r.describe();
+    ASSERT_EQ(r.errorLines().size(), 1u) << r.describe();
+    EXPECT_EQ(r.errorLines()[0].rfind("brdfcl: --op sample: 8388608 rows are more than one launch of the sampler takes on this device (", 0), 0u)
+        << r.err;
+  }
   for (const auto& c : cases) {
     const RunResult r = cli(dir, c.args);
     EXPECT_EQ(r.status, 2) << r.describe();

@@ -214,7 +214,8 @@ SampleBatch::SampleBatch(Runtime& rt, Evaluator& ev, const std::vector<MaterialP
       if (!(u[3 * i + k] >= 0.0f && u[3 * i + k] < 1.0f))
         throw Error(fmt::format("row {}: u{} must be in [0, 1), got {}", i, k + 1, u[3 * i + k]));
   }
-  if (n > ev.launchLimit()) throw Error(fmt::format("{} rows exceed one launch ({} at most on this device)", n, ev.launchLimit()));
+  if (n > ev.launchLimit())
+    throw Error(fmt::format("internal: {} sampling rows exceed one launch ({} at most on this device)", n, ev.launchLimit()), 3);
   const FeatureSet features = featuresOf(materials, ev.options().profile);
   s_->rt = &rt;
   s_->n = n;
