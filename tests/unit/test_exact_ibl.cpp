@@ -179,12 +179,14 @@ TEST(ExactIbl, SplitSumFurnaceStaysWithinItsDocumentedBounds) {
 }
 
 // The R2 sequence is quasi-random: the error falls at least as 1/sqrt(N) (ratio 4 for 16x the
-// samples, 2 allowed for noise) and on these smooth integrands about as 1/N (measured 19.5, about
-// N^-1.07); 32 (N^-1.25) would mean the 1024-sample error is no longer measurable against the
+// samples, 2 allowed for noise) and on these smooth integrands faster (measured 8.6, about N^-0.78,
+// with the lobe probabilities of `brdfcl sample`, which send most rough lobes to the cosine
+// hemisphere); 32 (N^-1.25) would mean the 1024-sample error is no longer measurable against the
 // reference.
 TEST(ExactIbl, ErrorFallsAtLeastAsOneOverSqrtN) {
   const double e64 = rmsRelativeError(exactFurnace(64)), e1024 = rmsRelativeError(exactFurnace(1024));
   const double ratio = e64 / e1024;
+  std::printf("exact furnace: RMS relative error %.5f at 64 samples, %.5f at 1024: %.1fx smaller\n", e64, e1024, ratio);
   EXPECT_GE(ratio, 2.0) << "RMS relative error " << e64 << " at 64 samples, " << e1024 << " at 1024";
   EXPECT_LE(ratio, 32.0) << "RMS relative error " << e64 << " at 64 samples, " << e1024 << " at 1024";
 }
