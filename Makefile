@@ -73,6 +73,7 @@ bench-peers: configure
 	@cmake --build --preset $(PRESET) -j $(JOBS) --target brdfcl
 	@mkdir -p out
 	@bench/peers/run-mitsuba-peer --check --json out/bench-peers.json
+	@bench/peers/run-mitsuba-peer --op sample --json out/bench-peers-sample.json
 	@bench/peers/run-drjit-peer --check --mitsuba-json out/bench-peers.json --json out/bench-peers-drjit.json
 	@bench/peers/run-drjit-peer --backend cuda --check --json out/bench-peers-drjit-cuda.json || test $$? -eq 3
 

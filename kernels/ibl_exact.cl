@@ -1,10 +1,11 @@
 /* Ground-truth image-based light (--ibl exact): per covered G-buffer pixel, a Monte Carlo estimate
    of the integral of environment radiance x the layered f (brdf/material.h, as batch evaluation) x
    N.L, by one-sample multiple importance sampling over a mixture of the environment's luminance
-   CDF and the BRDF's lobes (brdf/sampling.h). Launched in chunks of samples; running sums persist. */
+   CDF and the BRDF's lobes: the very samplers, pdfs and lobe probabilities of `brdfcl sample`
+   (sample.cl, brdf/sampling.h), exact Charlie and Ashikhmin sheen samplers included. Launched in
+   chunks of samples; running sums persist. */
 #define BRDFCL_W 1
-#include "brdf/material.h"
-#include "brdf/sampling.h"
+#include "sample.cl"
 #include "common/environment.h"
 #include "common/gbuffer_pixel.h"
 
@@ -103,34 +104,21 @@ __kernel void ibl_exact(__global const float* restrict gb, int width, int height
   brdfcl_material packed = brdfcl_pack_material(px.q);
   material_lanes m = material_splat_private(&packed);
   const float3 N = px.N, V = px.V;
-  /* The anisotropic lobe's frame: T' rotated from T by the anisotropy rotation (KHR_materials_anisotropy). */
-  const float3 Ta = packed.aniso_cos * px.T + packed.aniso_sin * px.B, Ba = cross(N, Ta);
-  const vec3w Vb = lanes3(frame_local(V, px.T, px.B, N)), Va = lanes3(frame_local(V, Ta, Ba, N));
+  /* V on N's frame (the anisotropic lobe turns it by the anisotropy rotation itself) and on the coat's. */
+  const vec3w Vb = lanes3(frame_local(V, px.T, px.B, N));
   const vec3w Vc = lanes3(frame_local(V, px.Tc, px.Bc, px.Nc));
   const float NdotV = dot(N, V);
 
-  /* Technique probabilities from approximate lobe albedos at this view: the coat's Fresnel, the
-     sheen's albedo E, Schlick's specular reflectance, the Fresnel-weighted diffuse. Floors keep
-     every lobe that f has reachable. The environment's share comes from the host: large for a
-     peaked environment (a sun), 0 for a uniform one, where BRDF sampling alone is best. */
-  float nv = clamp(NdotV, 1e-4f, 1.0f), fw = pow5w(1.0f - nv);
-  float coatF = m.clearcoat * (0.04f + 0.96f * pow5w(1.0f - clamp(Vc.z, 1e-4f, 1.0f)));
-  float3 base = (float3)(m.base_r, m.base_g, m.base_b);
-  float e_sheen = 0.0f;
-  if (m.sheen_max > 0.0f) e_sheen = E_SheenAlbedo(sheen_e, sheen_e_size, E_SheenAlbedoRow(sheen_e_size, m.sheen_roughness), nv);
-  float below = (1.0f - coatF) * (1.0f - m.sheen_max * e_sheen);
-  float spec_f = (1.0f - m.metallic) * (0.04f + 0.96f * fw) + m.metallic * luminance(base + (1.0f - base) * fw);
-  float w[TECH_COUNT];
-  w[TECH_DIFFUSE] = (1.0f - m.metallic) > 0.0f ? below * (1.0f - m.metallic) * (0.96f - 0.96f * fw) * luminance(base) + 0.01f : 0.0f;
-  w[TECH_SPECULAR] = below * spec_f + 0.01f;
-  w[TECH_SHEEN] = m.sheen_max > 0.0f ? (1.0f - coatF) * luminance((float3)(m.sheen_r, m.sheen_g, m.sheen_b)) * e_sheen + 0.01f : 0.0f;
-  w[TECH_COAT] = m.clearcoat > 0.0f ? coatF + 0.01f : 0.0f;
-  float lobes = w[TECH_DIFFUSE] + w[TECH_SPECULAR] + w[TECH_SHEEN] + w[TECH_COAT];
+  /* Technique probabilities: the environment's share comes from the host (large for a peaked
+     environment such as a sun, 0 for a uniform one, where BRDF sampling alone is best); the rest
+     is split between the lobes as `brdfcl sample` splits it at this view (sample.cl). */
+  float plobe[LOBE_COUNT];
+  lobe_probabilities(m, NdotV, sheen_e, sheen_e_size, plobe);
   const float p_env = env_share;
   float p[TECH_COUNT], cdf[TECH_COUNT];
   float run = 0.0f;
   for (int t = 0; t < TECH_ENV; ++t) {
-    p[t] = (1.0f - p_env) * w[t] / lobes;
+    p[t] = (1.0f - p_env) * plobe[t];
     run += p[t];
     cdf[t] = run;
   }
@@ -160,30 +148,23 @@ __kernel void ibl_exact(__global const float* restrict gb, int width, int height
     const uint j = (uint)(k / REPLICATES);
     float u1 = r2_dim(j, 3242174889u, rot1[rep]), u2 = r2_dim(j, 2447445414u, rot2[rep]);
     /* The technique whose interval of the CDF holds u1; u1 rescaled to [0, 1) within it. A share
-       left by float rounding above the last lobe goes to the specular one (always present) when the
-       environment has none. */
+       left by float rounding above the last lobe goes to the cosine hemisphere (always present) when
+       the environment has none. */
     int tech = 0;
     while (tech < TECH_ENV && !(u1 < cdf[tech] && p[tech] > 0.0f)) ++tech;
     if (tech == TECH_ENV && p_env <= 0.0f) {
-      tech = TECH_SPECULAR;
+      tech = TECH_DIFFUSE;
       u1 = 0.5f;
     } else {
       float lo = cdf[tech] - p[tech];
       u1 = clamp((u1 - lo) / p[tech], 0.0f, 0.99999994f);
     }
+    /* The coat samples in its own frame (its normal may differ from N); the other lobes in N's. */
     float3 L;
-    if (tech == TECH_DIFFUSE) {
-      L = from_frame(SampleCosineHemisphere(u1, u2), px.T, px.B, N);
-    } else if (tech == TECH_SPECULAR) {
-      vec3w Ve = Va;
-      Ve.z = max(Ve.z, 1e-4f);
-      L = from_frame(reflect_about(Va, SampleGGXVNDF(Ve, m.alpha_t, m.alpha, u1, u2)), Ta, Ba, N);
-    } else if (tech == TECH_SHEEN) {
-      L = from_frame(SampleUniformHemisphere(u1, u2), px.T, px.B, N);
-    } else if (tech == TECH_COAT) {
-      vec3w Ve = Vc;
-      Ve.z = max(Ve.z, 1e-4f);
-      L = from_frame(reflect_about(Vc, SampleGGXVNDF(Ve, m.clearcoat_alpha, m.clearcoat_alpha, u1, u2)), px.Tc, px.Bc, px.Nc);
+    if (tech == TECH_COAT) {
+      L = from_frame(lobe_sample(LOBE_COAT, m, Vc, u1, u2), px.Tc, px.Bc, px.Nc);
+    } else if (tech < TECH_ENV) {
+      L = from_frame(lobe_sample(tech, m, Vb, u1, u2), px.T, px.B, N);
     } else {
       L = env_sample_direction(env_rows, env_cols, env_w, env_h, u1, u2, env_rotation);
     }
@@ -191,14 +172,13 @@ __kernel void ibl_exact(__global const float* restrict gb, int width, int height
     float3 value = (float3)(0.0f);
     float NdotL = dot(N, L);
     if (NdotL > 0.0f && NdotV > 0.0f) {
-      vec3w Lb = lanes3(frame_local(L, px.T, px.B, N)), La = lanes3(frame_local(L, Ta, Ba, N));
+      vec3w Lb = lanes3(frame_local(L, px.T, px.B, N));
       vec3w Lc = lanes3(frame_local(L, px.Tc, px.Bc, px.Nc));
       /* One-sample MIS with the balance heuristic: the sample is weighted by the whole mixture's
          density, sum over techniques t of p_t pdf_t(L) (Veach 1997, section 9.2.4). */
-      float pdf = p[TECH_DIFFUSE] * PdfCosineHemisphere(Lb) + p[TECH_SPECULAR] * PdfGGXVNDFReflect(La, Va, m.alpha_t, m.alpha) +
-                  p[TECH_SHEEN] * PdfUniformHemisphere(Lb) +
-                  (p[TECH_COAT] > 0.0f ? p[TECH_COAT] * PdfGGXVNDFReflect(Lc, Vc, m.clearcoat_alpha, m.clearcoat_alpha) : 0.0f) +
-                  (p_env > 0.0f ? p_env * env_pdf(env_texel_p, env_w, env_h, L, env_rotation) : 0.0f);
+      float pdf = (p_env > 0.0f ? p_env * env_pdf(env_texel_p, env_w, env_h, L, env_rotation) : 0.0f);
+      for (int t = 0; t < TECH_ENV; ++t)
+        if (p[t] > 0.0f) pdf += p[t] * (t == TECH_COAT ? lobe_pdf(LOBE_COAT, m, Lc, Vc) : lobe_pdf(t, m, Lb, Vb));
       if (pdf > 0.0f) {
         /* f exactly as the shade kernel's punctual lights evaluate it: base and sheen on N, the
            clearcoat layered on its own normal. */

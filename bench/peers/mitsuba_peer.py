@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 # Mitsuba 3 (llvm_ad_rgb, 2 threads) as a throughput peer of `brdfcl bench`: both evaluate the
-# same direction pairs, interleaved round by round in one run, and the ratios are printed.
+# same direction pairs (--op sample: both sample directions at the same views), interleaved round
+# by round in one run, and the ratios are printed.
 # Run through `make bench-peers` (bench/peers/run-mitsuba-peer sets up the venv and libLLVM).
 import argparse
 import json
@@ -21,8 +22,9 @@ def fail(message):
     sys.exit(2)
 
 
-def run_brdfcl(brdfcl, lobe, pairs_path, runs):
-    cmd = [brdfcl, "bench", "--lobe", lobe, "--materials", "1", "--pairs", pairs_path, "--runs", str(runs), "--json"]
+def run_brdfcl(brdfcl, lobe, pairs_path, runs, op="eval"):
+    cmd = [brdfcl, "bench", "--op", op, "--lobe", lobe, "--materials", "1", "--pairs", pairs_path, "--runs", str(runs),
+           "--json"]
     out = subprocess.run(cmd, check=True, capture_output=True, text=True).stdout
     return json.loads(out)
 
@@ -118,6 +120,26 @@ class MitsubaSide:
         return median_seconds(self.run, runs)
 
 
+class MitsubaSampleSide(MitsubaSide):
+    """bsdf.sample at the pairs' views (their V planes), with uniform numbers drawn once: the
+    sampled direction, its pdf and the weight f cos / pdf, as `brdfcl bench --op sample` computes."""
+
+    def __init__(self, mi, dr, bsdf, planes, seed):
+        super().__init__(mi, dr, bsdf, planes)
+        rng = np.random.default_rng(seed)
+        u = rng.random((3, planes.shape[1]), dtype=np.float32)
+        self.s1 = mi.Float(u[2])
+        self.s2 = mi.Point2f(u[0], u[1])
+        dr.eval(self.s1, self.s2)
+        dr.sync_thread()
+
+    def run(self):
+        bs, weight = self.bsdf.sample(self.ctx, self.si, self.s1, self.s2)
+        self.dr.eval(bs.wo, bs.pdf, weight)
+        self.dr.sync_thread()
+        return bs, weight
+
+
 def main():
     ap = argparse.ArgumentParser(description="brdfcl against Mitsuba 3 on the same direction pairs")
     ap.add_argument("--brdfcl", default="build/bin/brdfcl")
@@ -128,6 +150,8 @@ def main():
     ap.add_argument("--seed", type=int, default=1)
     ap.add_argument("--json", help="also write the figures to this file")
     ap.add_argument("--check", action="store_true", help="first compare the specular lobes' values on 65,536 pairs")
+    ap.add_argument("--op", default="eval", choices=("eval", "sample"),
+                    help="eval: f at given pairs (bsdf.eval); sample: directions, pdfs and weights (bsdf.sample)")
     a = ap.parse_args()
 
     try:
@@ -144,7 +168,7 @@ def main():
     workloads = [("specular", "roughconductor (ggx, anisotropic, conductor Fresnel)"),
                  ("all", "principled (sheen, clearcoat, anisotropic)")]
     results = []
-    print(f"brdfcl vs Mitsuba {mi.__version__} (llvm_ad_rgb, {dr.thread_count()} threads), one material, "
+    print(f"brdfcl vs Mitsuba {mi.__version__} (llvm_ad_rgb, {dr.thread_count()} threads), {a.op}, one material, "
           f"median of {a.runs} runs, {a.rounds} interleaved rounds")
     with tempfile.TemporaryDirectory() as tmp:
         if a.check:
@@ -160,16 +184,18 @@ def main():
             path = os.path.join(tmp, f"pairs-{n}.f32")
             planes.tofile(path)
             for lobe, label in workloads:
-                first = run_brdfcl(a.brdfcl, lobe, path, a.runs)
-                side = MitsubaSide(mi, dr, mitsuba_bsdf(mi, lobe, first["material0"]), planes)
+                first = run_brdfcl(a.brdfcl, lobe, path, a.runs, a.op)
+                bsdf = mitsuba_bsdf(mi, lobe, first["material0"])
+                side = (MitsubaSampleSide(mi, dr, bsdf, planes, a.seed) if a.op == "sample"
+                        else MitsubaSide(mi, dr, bsdf, planes))
                 side.run()  # warm-up: traces and compiles the kernel
                 side.run()
                 ours, theirs = [], []
                 for _ in range(a.rounds):
-                    ours.append(run_brdfcl(a.brdfcl, lobe, path, a.runs)["samples_per_second"])
+                    ours.append(run_brdfcl(a.brdfcl, lobe, path, a.runs, a.op)["samples_per_second"])
                     theirs.append(n / side.median_seconds(a.runs))
                 ratios = [o / t for o, t in zip(ours, theirs)]
-                row = {"lobe": lobe, "mitsuba_bsdf": label, "pairs": n,
+                row = {"op": a.op, "lobe": lobe, "mitsuba_bsdf": label, "pairs": n,
                        "brdfcl_samples_per_second": statistics.median(ours),
                        "mitsuba_samples_per_second": statistics.median(theirs),
                        "ratio_median": statistics.median(ratios), "ratios": ratios, "material": first["material0"]}
@@ -178,7 +204,7 @@ def main():
                       f"{row['mitsuba_samples_per_second'] / 1e6:>10.1f}  {row['ratio_median']:.2f}x "
                       f"({', '.join(f'{r:.2f}' for r in ratios)})", flush=True)
                 del side
-    print("  (Msamples/s; brdfcl: OpenCL kernel only; Mitsuba: bsdf.eval with dr.eval, inputs resident)")
+    print(f"  (Msamples/s; brdfcl: OpenCL kernel only; Mitsuba: bsdf.{a.op} with dr.eval, inputs resident)")
     if a.json:
         with open(a.json, "w") as f:
             json.dump({"mitsuba": mi.__version__, "drjit": dr.__version__, "threads": dr.thread_count(),

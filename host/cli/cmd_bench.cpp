@@ -1,6 +1,7 @@
 // `brdfcl bench`: throughput of the batch kernel on N random in-domain samples over K random
 // materials (256 by default), median of several runs after a warm-up, with the side-by-side ratios
-// to the C++ peers (scalar loop, OpenMP-SIMD loop) and to the STREAM-triad memory bound, in one process.
+// to the C++ peers (scalar loop, OpenMP-SIMD loop) and to the STREAM-triad memory bound, in one process;
+// with --op sample, of the importance sampler (kernels/sample.cl) on resident rows.
 #include <algorithm>
 #include <chrono>
 #include <cerrno>
@@ -16,6 +17,7 @@
 #include "brdfcl/error.hpp"
 #include "brdfcl/io.hpp"
 #include "commands.hpp"
+#include "host/src/eval/sample_batch.hpp"
 #include "host/src/eval/workload.hpp"
 #include "peers_module.hpp"
 
@@ -37,7 +39,7 @@ double medianSeconds(int runs, F&& f) {
 }
 
 struct BenchArgs {
-  std::string lobe = "all", device, profile = "spec";
+  std::string op = "eval", lobe = "all", device, profile = "spec";
   std::size_t n = std::size_t(1) << 22;
   std::size_t materials = bench::kDefaultMaterials;
   std::string pairs, indices, sheenEOut;
@@ -163,6 +165,74 @@ void reportPairs(const BenchArgs& a, Runtime& rt, const bench::Bench& b, double 
   }
 }
 
+// --op sample: the sampler over n rows resident on the device (views random above the horizon, or
+// those of --pairs; u from the counter-based generator with seed 1), wall time of a launch and its
+// device time. --lobe specular samples the anisotropic GGX lobe alone; all, the layered mixture.
+void benchSample(BenchArgs& a) {
+  std::vector<float> pairs;
+  std::vector<std::uint32_t> indices;
+  if (!a.pairs.empty()) {
+    pairs = readPairs(a.pairs);
+    a.n = pairs.size() / 6;
+    if (!a.indices.empty()) indices = readIndices(a.indices, a.n, a.materials);
+  }
+  const auto t0 = Clock::now();
+  Runtime rt(a.device);
+  const bench::Workload w = bench::makeWorkload(a.lobe, 1, a.materials);
+  Evaluator ev(rt, w.options);
+  // Before the rows are allocated: the batch is one launch, as the evaluation kernel's is.
+  if (a.n > ev.launchLimit())
+    throw Error(fmt::format("--op sample: {} rows are more than one launch of the sampler takes on this device ({} at "
+                            "most); lower --n or use a smaller --pairs file",
+                            a.n, ev.launchLimit()));
+  std::vector<float> view(3 * a.n), u(3 * a.n);
+  std::vector<std::uint32_t> index(a.n);
+  std::uint64_t state = 0x9e3779b97f4a7c15ull;
+  const auto next = [&state] {  // xorshift64*: views and indices, independent of the u stream
+    state ^= state >> 12, state ^= state << 25, state ^= state >> 27;
+    return state * 0x2545f4914f6cdd1dull;
+  };
+  const auto unit = [&next] { return float(next() >> 40) * (1.0f / 16777216.0f); };
+  for (std::size_t i = 0; i < a.n; ++i) {
+    if (!pairs.empty()) {
+      for (int k = 0; k < 3; ++k) view[3 * i + k] = pairs[(3 + k) * a.n + i];
+    } else {
+      const float z = 0.01f + 0.99f * unit(), phi = 6.2831853f * unit(), s = std::sqrt(1.0f - z * z);
+      view[3 * i] = s * std::cos(phi), view[3 * i + 1] = s * std::sin(phi), view[3 * i + 2] = z;
+    }
+    index[i] = indices.empty() ? std::uint32_t(next() % a.materials) : indices[i];
+  }
+  Evaluator::drawUniforms(1, 0, a.n, u.data());
+  SampleBatch b(rt, ev, w.materials, view, index, u);
+  b.run();  // warm-up; also builds (or loads from PoCL's cache) the program
+  const double firstRun = std::chrono::duration<double>(Clock::now() - t0).count();
+  std::vector<double> launches;
+  const double kernel = medianSeconds(a.runs, [&] {
+    b.run();
+    launches.push_back(b.lastKernelSeconds());
+  });
+  std::sort(launches.begin(), launches.end());
+  const double launch = launches[launches.size() / 2];
+  const std::vector<float> rows = b.read();
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < a.n; ++i) kept += rows[7 * i + 3] > 0.0f;
+  const double keptFraction = double(kept) / double(a.n);
+  if (a.json) {
+    nlohmann::json j = kernelJson(a, rt, kernel, launch, firstRun);
+    j["op"] = "sample";
+    j["kept_fraction"] = keptFraction;
+    j["material0"] = materialJson(w.materials[0]);
+    std::printf("%s\n", j.dump(2).c_str());
+    return;
+  }
+  fmt::print("brdfcl bench --op sample: lobe {}, {} rows over {} materials, median of {} runs, on {}\n", a.lobe, a.n,
+             a.materials, a.runs, rt.info().name);
+  fmt::print("  {:<28}{:>12.1f} Msamples/s\n", "OpenCL kernel", double(a.n) / kernel / 1e6);
+  fmt::print("  {:<28}{:>12.1f} Msamples/s   (device time of the launch)\n", "launch alone", double(a.n) / launch / 1e6);
+  fmt::print("  directions kept (above the horizon): {:.2f} %\n", 100 * keptFraction);
+  fmt::print("  first run (device open, program build or cache load, warm-up): {:.3f} s\n", firstRun);
+}
+
 // The kernel, and unless --pairs, its ratios to the C++ peers, the memory bound and a small eval.
 void benchKernel(BenchArgs& a) {
   std::vector<float> pairs;
@@ -256,6 +326,9 @@ void benchKernel(BenchArgs& a) {
 void addBenchCommand(CLI::App& app) {
   auto args = std::make_shared<BenchArgs>();
   auto* cmd = app.add_subcommand("bench", "Measure samples/s of the kernel and its ratios to CPU peers");
+  cmd->add_option("--op", args->op,
+                  "eval (default): f of the batch kernel; sample: the importance sampler (Lx Ly Lz pdf w rows), "
+                  "--lobe specular its anisotropic GGX lobe alone, all the layered mixture");
   cmd->add_option("--lobe", args->lobe, "sheen|specular|clearcoat|all (default all)");
   cmd->add_option("--n", args->n, "samples per run (default 4194304)");
   cmd->add_option("--materials", args->materials, "number of random materials, 1 to 1048576 (default 256)");
@@ -276,6 +349,8 @@ void addBenchCommand(CLI::App& app) {
   cmd->add_flag("--json", args->json, "print one JSON object on stdout");
   cmd->callback([args] {
     const Profile profile = parseProfile(args->profile);
+    if (args->op != "eval" && args->op != "sample")
+      throw Error(fmt::format("--op '{}' is not a benchmark operation; use eval or sample", args->op));
     if (args->n == 0 || args->n > (std::size_t(1) << 28))
       throw Error(fmt::format("--n {} is out of range; use 1 to 268435456", args->n));
     if (args->runs < 1 || args->runs > 1000) throw Error(fmt::format("--runs {} is out of range; use 1 to 1000", args->runs));
@@ -287,6 +362,12 @@ void addBenchCommand(CLI::App& app) {
       if (args->pairs.empty()) throw Error("--sheen-e-out goes with --pairs, the outside peer's run; give --pairs FILE too");
       checkOutputPath("--sheen-e-out", args->sheenEOut);
       checkDistinctFiles({{"--pairs", args->pairs}, {"--indices", args->indices}, {"--sheen-e-out", args->sheenEOut, true}});
+    }
+    if (args->op == "sample") {
+      if (profile != Profile::Spec) throw Error("--op sample times the spec's sampler; drop --profile");
+      if (!args->sheenEOut.empty()) throw Error("--sheen-e-out goes with --op eval; drop it");
+      benchSample(*args);
+      return;
     }
     if (profile != Profile::Spec) {
       if (!args->pairs.empty()) throw Error("--pairs and --profile are separate measurements; give one");

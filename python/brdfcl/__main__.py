@@ -37,11 +37,19 @@ def _pair(text: str, what: str, cast: Callable[[str], Any]) -> Tuple[Any, Any]:
     return w, h
 
 
-def _angles(text: str) -> List[float]:
+def _bins(text: str) -> Tuple[int, int]:
+    try:
+        t, p = (int(v) for v in text.lower().split("x"))
+    except ValueError:
+        _fail(f"--bins '{text}' must be THETAxPHI bin counts, e.g. 18x36")
+    return t, p
+
+
+def _angles(text: str, option: str = "--view-angles") -> List[float]:
     try:
         return [float(v) for v in text.split(",") if v.strip()]
     except ValueError:
-        _fail(f"--view-angles '{text}' must be degrees separated by commas, e.g. 0,30,60")
+        _fail(f"{option} '{text}' must be degrees separated by commas, e.g. 0,30,60")
 
 
 def _common(p: argparse.ArgumentParser, materials: bool, figsize: str) -> None:
@@ -129,6 +137,15 @@ def _parser() -> argparse.ArgumentParser:
     p.add_argument("--threshold", type=float, default=0.01, help="as brdfcl diff --threshold (default 0.01)")
     p.add_argument("--floor", type=float, help="as brdfcl diff --floor (default 1e-3 x mean luminance of B)")
     p.add_argument("--range", type=float, help="colour range +-R (default: p99 of |d|)")
+
+    p = kinds.add_parser("samples", help="brdfcl.sample's histogram against brdfcl.pdf on the hemisphere")
+    _common(p, True, "14x5")
+    _model(p)
+    p.add_argument("--lobe", default="all", help="all (the mixture)|diffuse|specular|sheen|clearcoat")
+    p.add_argument("--view", default="45,0", metavar="THETA,PHI", help="θ_V and φ_V in degrees (default 45,0)")
+    p.add_argument("--count", type=int, default=200000, help="samples (default 200000)")
+    p.add_argument("--seed", type=int, default=0, help="seed of the counter-based generator (default 0)")
+    p.add_argument("--bins", default="18x36", metavar="NTHETAxNPHI", help="θ and φ bins (default 18x36)")
     return top
 
 
@@ -168,6 +185,12 @@ def _plot(kind: str, a: argparse.Namespace) -> Any:
     if kind == "albedo":
         return plot.albedo(a.materials, a.material, resolution=a.resolution, channel=a.channel, profile=a.profile,
                            **model, **common)
+    if kind == "samples":
+        view = _angles(a.view, "--view")
+        if len(view) != 2:
+            _fail(f"--view '{a.view}' must be THETA,PHI in degrees, e.g. 45,0")
+        return plot.samples(a.materials, a.material, view=(view[0], view[1]), lobe=a.lobe, count=a.count,
+                            seed=a.seed, bins=_bins(a.bins), profile=a.profile, **model, **common)
     if kind == "compare":
         return plot.compare(a.materials, a.material, profile=a.profile, against=a.against, plane=a.plane, lobe=a.lobe,
                             resolution=a.resolution, **model, **common)

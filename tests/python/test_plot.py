@@ -175,6 +175,7 @@ CLI_CASES = {
     "sheen-e": ["--size", 16],
     "compare": ["--profile", "filament", "--resolution", 16],
     "image": ["--size", "40x30", "--exposure", "0.5"],
+    "samples": ["--count", 20000, "--bins", "9x18", "--view", "50,20"],
 }
 
 

@@ -11,6 +11,7 @@
 #include "brdfcl/error.hpp"
 #include "brdfcl/evaluator.hpp"
 #include "eval/batch.hpp"
+#include "eval/sample_batch.hpp"
 #include "eval/splitmix64.hpp"
 #include "model/pack.hpp"
 #include "runtime/opencl.hpp"
@@ -185,6 +186,99 @@ void Evaluator::pdf(const std::vector<MaterialParams>& materials, const Samples&
 std::vector<float> Evaluator::pdf(const std::vector<MaterialParams>& materials, const Samples& samples) {
   std::vector<float> out(samples.size());
   pdf(materials, samples, out.data());
+  return out;
+}
+
+struct SampleBatch::State {
+  Runtime* rt = nullptr;
+  SamplingBatch s;
+  std::size_t n = 0;
+  cl::Kernel kernel;
+  cl::Buffer view, index, u, result;
+  cl::Event launch;
+};
+
+SampleBatch::SampleBatch(Runtime& rt, Evaluator& ev, const std::vector<MaterialParams>& materials,
+                         const std::vector<float>& view, const std::vector<std::uint32_t>& material,
+                         const std::vector<float>& u)
+    : s_(std::make_unique<State>()) {
+  const std::size_t n = view.size() / 3;
+  if (view.size() % 3 || u.size() != 3 * n || (!material.empty() && material.size() != n) || n == 0)
+    throw Error(fmt::format("internal: {} view floats, {} uniforms, {} indices", view.size(), u.size(), material.size()), 3);
+  // The packed materials and f's tables, as a batch of the evaluator holds them (checked there).
+  const SoaBatch b(ev, materials, 16);
+  for (std::size_t i = 0; i < n; ++i) {
+    checkDirection(view.data() + 3 * i, i, "V");
+    checkIndex(material.empty() ? nullptr : material.data(), i, materials.size());
+    for (int k = 0; k < 3; ++k)
+      if (!(u[3 * i + k] >= 0.0f && u[3 * i + k] < 1.0f))
+        throw Error(fmt::format("row {}: u{} must be in [0, 1), got {}", i, k + 1, u[3 * i + k]));
+  }
+  if (n > ev.launchLimit())
+    throw Error(fmt::format("internal: {} sampling rows exceed one launch ({} at most on this device)", n, ev.launchLimit()), 3);
+  const FeatureSet features = featuresOf(materials, ev.options().profile);
+  s_->rt = &rt;
+  s_->n = n;
+  s_->s = makeSamplingBatch(rt, ev.options(), materials, b.packedMaterials(), b.sheenAlbedoValues(),
+                            b.sheenAlbedoSize(), features.sheen || features.draft ? &ev.sheenAlbedo() : nullptr);
+  try {
+    const auto& ctx = rt.opencl().context();
+    s_->view = input(ctx, view.data(), view.size());
+    s_->u = input(ctx, u.data(), u.size());
+    s_->index = input(ctx, material.empty() ? nullptr : material.data(), material.size());
+    s_->result = cl::Buffer(ctx, CL_MEM_READ_WRITE, 28 * n);
+    s_->kernel = cl::Kernel(s_->s.program, "sample_rows");
+    int arg = 0;
+    s_->kernel.setArg(arg++, s_->view);
+    if (!material.empty())
+      s_->kernel.setArg(arg++, s_->index);
+    else
+      s_->kernel.setArg(arg++, sizeof(cl_mem), nullptr);
+    s_->kernel.setArg(arg++, s_->u);
+    s_->kernel.setArg(arg++, cl_uint(n));
+    s_->kernel.setArg(arg++, s_->s.materials);
+    s_->kernel.setArg(arg++, s_->s.table);
+    s_->kernel.setArg(arg++, s_->s.tableSize);
+    s_->kernel.setArg(arg++, s_->s.albedo);
+    s_->kernel.setArg(arg++, s_->s.albedoSize);
+    s_->kernel.setArg(arg++, s_->result);
+  } catch (const cl::Error&) {
+    rethrowOpenCL("preparing the sampling batch");
+  }
+}
+
+SampleBatch::~SampleBatch() = default;
+
+std::size_t SampleBatch::size() const { return s_->n; }
+
+void SampleBatch::run() {
+  try {
+    auto& q = s_->rt->opencl().queue();
+    q.enqueueNDRangeKernel(s_->kernel, cl::NullRange, cl::NDRange(s_->n), cl::NullRange, nullptr, &s_->launch);
+    s_->launch.wait();
+  } catch (const cl::Error&) {
+    rethrowOpenCL("sampling directions");
+  }
+}
+
+double SampleBatch::lastKernelSeconds() const {
+  if (s_->launch() == nullptr) return 0;
+  try {
+    const auto begin = s_->launch.getProfilingInfo<CL_PROFILING_COMMAND_START>();
+    const auto end = s_->launch.getProfilingInfo<CL_PROFILING_COMMAND_END>();
+    return double(end - begin) * 1e-9;
+  } catch (const cl::Error&) {
+    rethrowOpenCL("reading the kernel's profiling times");
+  }
+}
+
+std::vector<float> SampleBatch::read() const {
+  std::vector<float> out(7 * s_->n);
+  try {
+    s_->rt->opencl().queue().enqueueReadBuffer(s_->result, CL_TRUE, 0, 28 * s_->n, out.data());
+  } catch (const cl::Error&) {
+    rethrowOpenCL("reading the sampled rows");
+  }
   return out;
 }
 
