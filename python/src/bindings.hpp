@@ -5,6 +5,7 @@
 
 #include <nanobind/nanobind.h>
 #include <nanobind/ndarray.h>
+#include <nanobind/stl/string.h>
 
 #include <cstddef>
 #include <initializer_list>
@@ -40,6 +41,20 @@ inline nb::ndarray<nb::numpy, float> imageToNumpy(brdfcl::Image&& img) {
   return toNumpy(std::move(img.rgb), {h, w, 3});
 }
 
+// A device as brdfcl.devices() and Device.info show it.
+inline nb::dict deviceDict(const brdfcl::DeviceInfo& i) {
+  nb::dict d;
+  d["index"] = i.index;
+  d["name"] = i.name;
+  d["platform"] = i.platform;
+  d["type"] = i.type;
+  d["compute_units"] = i.computeUnits;
+  d["opencl_c"] = i.openclC;
+  d["max_alloc"] = i.maxAlloc;
+  d["global_mem"] = i.globalMem;
+  return d;
+}
+
 // Materials parsed once on the Python side and passed to every call that evaluates them.
 struct Materials {
   std::vector<brdfcl::MaterialParams> list;
@@ -63,19 +78,7 @@ class Device {
     return *slot;
   }
 
-  nb::dict info() const {
-    nb::dict d;
-    const auto& i = rt_.info();
-    d["index"] = i.index;
-    d["name"] = i.name;
-    d["platform"] = i.platform;
-    d["type"] = i.type;
-    d["compute_units"] = i.computeUnits;
-    d["opencl_c"] = i.openclC;
-    d["max_alloc"] = i.maxAlloc;
-    d["global_mem"] = i.globalMem;
-    return d;
-  }
+  nb::dict info() const { return deviceDict(rt_.info()); }
 
  private:
   brdfcl::Runtime rt_;

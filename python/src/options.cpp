@@ -55,18 +55,7 @@ void bindOptions(nb::module_& m) {
 
   m.def("devices", [] {
     std::vector<nb::dict> out;
-    for (const auto& i : brdfcl::listDevices()) {
-      nb::dict d;
-      d["index"] = i.index;
-      d["name"] = i.name;
-      d["platform"] = i.platform;
-      d["type"] = i.type;
-      d["compute_units"] = i.computeUnits;
-      d["opencl_c"] = i.openclC;
-      d["max_alloc"] = i.maxAlloc;
-      d["global_mem"] = i.globalMem;
-      out.push_back(d);
-    }
+    for (const auto& i : brdfcl::listDevices()) out.push_back(deviceDict(i));
     return out;
   });
 
