@@ -1,4 +1,5 @@
-# Type stubs of brdfcl._core, the nanobind module on the C++ host library (python/src/module.cpp).
+# Type stubs of brdfcl._core, the nanobind module on the C++ host library (python/src/: module.cpp and
+# one binding file per area).
 # Use the brdfcl package; these signatures are its internals.
 from typing import Any, Dict, List, Optional, Tuple
 

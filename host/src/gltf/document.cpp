@@ -8,8 +8,7 @@
 
 #include "brdfcl/error.hpp"
 #include "io/messages.hpp"
-#include "model/emissive_factor.hpp"
-#include "model/material_keys.hpp"
+#include "model/gltf_material.hpp"
 
 namespace brdfcl::gltf::detail {
 namespace {
@@ -227,96 +226,61 @@ std::vector<Material> Document::materials(std::size_t textureCount, std::vector<
   std::vector<Material> out;
   const json* list = member(doc_, "materials");
   if (!list || !list->is_array()) return out;
-  const auto report = [&](const std::string& finding) {
-    if (strict) throw Error(source_ + ": " + brdfcl::detail::strictError(finding));
-    warnings.push_back(source_ + ": " + finding);
-  };
-  for (std::size_t i = 0; i < list->size(); ++i) {
+  for (std::size_t i = 0; i < list->size(); ++i)
     out.push_back(material(object((*list)[i], at("materials", i)), at("materials", i), textureCount, strict, warnings));
-    brdfcl::detail::checkMaterialKeys((*list)[i], at("materials", i), brdfcl::detail::MaterialKeyReader::GltfAsset,
-                                      report);
-  }
   return out;
 }
 
 Material Document::material(const json& m, const std::string& path, std::size_t textureCount, bool strict,
                             std::vector<std::string>& warnings) const {
+  using brdfcl::detail::MaterialTexture;
   Material out;
-  if (const json* n = member(m, "name"); n && n->is_string()) out.name = n->get<std::string>();
-  if (const json* pbr = member(m, "pbrMetallicRoughness")) {
-    const std::string p = path + ".pbrMetallicRoughness";
-    object(*pbr, p);
-    out.baseColorFactor = numbers<4>(*pbr, "baseColorFactor", p, out.baseColorFactor, true);
-    out.baseColorTexture = textureRef(*pbr, "baseColorTexture", p, textureCount);
-    out.metallicFactor = float(number(*pbr, "metallicFactor", p, 1.0, "a number in [0, 1]", unitRange));
-    out.roughnessFactor = float(number(*pbr, "roughnessFactor", p, 1.0, "a number in [0, 1]", unitRange));
-    out.metallicRoughnessTexture = textureRef(*pbr, "metallicRoughnessTexture", p, textureCount);
-  }
-  out.normalTexture = textureRef(m, "normalTexture", path, textureCount, "scale");
-  out.occlusionTexture = textureRef(m, "occlusionTexture", path, textureCount, "strength");
-  if (out.occlusionTexture.present() && !unitRange(out.occlusionTexture.value))
-    fail(path + ".occlusionTexture.strength", "expected a number in [0, 1], got " +
-                                                  brdfcl::detail::formatNumber(out.occlusionTexture.value));
-  out.emissiveTexture = textureRef(m, "emissiveTexture", path, textureCount);
-  if (const json* e = member(m, "emissiveFactor")) {
-    const std::string p = path + ".emissiveFactor";
-    if (!e->is_array() || e->size() != 3)
-      fail(p, "expected an array of 3 numbers >= 0, got " + brdfcl::detail::describeJson(*e));
-    std::array<float, 3> rgb{};
-    for (std::size_t c = 0; c < 3; ++c) rgb[c] = float(checked((*e)[c], at(p, c), "a number >= 0", nonNegative));
-    out.emissiveFactor = brdfcl::detail::clampEmissiveFactor(rgb, source_, p, strict,
-                                                             [&](const std::string& w) { warnings.push_back(w); });
-  }
-  if (const json* a = member(m, "alphaMode")) {
-    const std::string mode = a->is_string() ? a->get<std::string>() : "";
-    if (mode == "OPAQUE") out.alphaMode = AlphaMode::Opaque;
-    else if (mode == "MASK") out.alphaMode = AlphaMode::Mask;
-    else if (mode == "BLEND") out.alphaMode = AlphaMode::Blend;
-    else fail(path + ".alphaMode", "expected \"OPAQUE\", \"MASK\" or \"BLEND\", got " + brdfcl::detail::describeJson(*a));
-  }
-  out.alphaCutoff = float(number(m, "alphaCutoff", path, 0.5, "a number >= 0", nonNegative));
-  if (const json* d = member(m, "doubleSided")) {
-    if (!d->is_boolean()) fail(path + ".doubleSided", "expected true or false, got " + brdfcl::detail::describeJson(*d));
-    out.doubleSided = d->get<bool>();
-  }
-  extensionsOf(m, path, textureCount, out);
+  brdfcl::detail::GltfMaterialContext context;
+  context.source = source_;
+  context.reader = brdfcl::detail::MaterialKeyReader::GltfAsset;
+  context.strict = strict;
+  context.warn = [&warnings](const std::string& w) { warnings.push_back(w); };
+  context.texture = [&](MaterialTexture slot, const json& parent, const char* key, const std::string& parentPath,
+                        const char* valueKey) {
+    const TextureRef ref = textureRef(parent, key, parentPath, textureCount, valueKey);
+    switch (slot) {
+      case MaterialTexture::Normal: out.normalTexture = ref; break;
+      case MaterialTexture::Occlusion:
+        if (!unitRange(ref.value))
+          fail(path + ".occlusionTexture.strength",
+               "expected a number in [0, 1], got " + brdfcl::detail::formatNumber(ref.value));
+        out.occlusionTexture = ref;
+        break;
+      case MaterialTexture::Emissive: out.emissiveTexture = ref; break;
+      case MaterialTexture::BaseColor: out.baseColorTexture = ref; break;
+      case MaterialTexture::MetallicRoughness: out.metallicRoughnessTexture = ref; break;
+      case MaterialTexture::SheenColor: out.sheenColorTexture = ref; break;
+      case MaterialTexture::SheenRoughness: out.sheenRoughnessTexture = ref; break;
+      case MaterialTexture::Clearcoat: out.clearcoatTexture = ref; break;
+      case MaterialTexture::ClearcoatRoughness: out.clearcoatRoughnessTexture = ref; break;
+      case MaterialTexture::ClearcoatNormal: out.clearcoatNormalTexture = ref; break;
+      case MaterialTexture::Anisotropy: out.anisotropyTexture = ref; break;
+      case MaterialTexture::DraftColorIntensity: break;  // materials files only
+    }
+  };
+  const brdfcl::detail::GltfMaterial g = brdfcl::detail::readGltfMaterial(m, path, context);
+  const MaterialParams& p = g.params;
+  out.name = p.name;
+  out.baseColorFactor = {p.baseColor[0], p.baseColor[1], p.baseColor[2], g.baseColorAlpha};
+  out.metallicFactor = p.metallic;
+  out.roughnessFactor = p.roughness;
+  out.emissiveFactor = p.emissive;
+  out.emissiveStrength = g.emissiveStrength;
+  out.alphaMode = g.alphaMode;
+  out.alphaCutoff = g.alphaCutoff;
+  out.doubleSided = g.doubleSided;
+  out.sheenColorFactor = p.sheenColor;
+  out.sheenRoughnessFactor = p.sheenRoughness;
+  out.clearcoatFactor = p.clearcoat;
+  out.clearcoatRoughnessFactor = p.clearcoatRoughness;
+  out.anisotropyStrength = p.anisotropyStrength;
+  out.anisotropyRotation = p.anisotropyRotation;
   return out;
-}
-
-void Document::extensionsOf(const json& m, const std::string& path, std::size_t textureCount, Material& out) const {
-  const json* ext = member(m, "extensions");
-  if (!ext) return;
-  const std::string ep = path + ".extensions";
-  object(*ext, ep);
-  if (const json* s = member(*ext, "KHR_materials_sheen")) {
-    const std::string p = ep + ".KHR_materials_sheen";
-    object(*s, p);
-    out.sheenColorFactor = numbers<3>(*s, "sheenColorFactor", p, out.sheenColorFactor, true);
-    out.sheenColorTexture = textureRef(*s, "sheenColorTexture", p, textureCount);
-    out.sheenRoughnessFactor = float(number(*s, "sheenRoughnessFactor", p, 0.0, "a number in [0, 1]", unitRange));
-    out.sheenRoughnessTexture = textureRef(*s, "sheenRoughnessTexture", p, textureCount);
-  }
-  if (const json* c = member(*ext, "KHR_materials_clearcoat")) {
-    const std::string p = ep + ".KHR_materials_clearcoat";
-    object(*c, p);
-    out.clearcoatFactor = float(number(*c, "clearcoatFactor", p, 0.0, "a number in [0, 1]", unitRange));
-    out.clearcoatTexture = textureRef(*c, "clearcoatTexture", p, textureCount);
-    out.clearcoatRoughnessFactor = float(number(*c, "clearcoatRoughnessFactor", p, 0.0, "a number in [0, 1]", unitRange));
-    out.clearcoatRoughnessTexture = textureRef(*c, "clearcoatRoughnessTexture", p, textureCount);
-    out.clearcoatNormalTexture = textureRef(*c, "clearcoatNormalTexture", p, textureCount, "scale");
-  }
-  if (const json* a = member(*ext, "KHR_materials_anisotropy")) {
-    const std::string p = ep + ".KHR_materials_anisotropy";
-    object(*a, p);
-    out.anisotropyStrength = float(number(*a, "anisotropyStrength", p, 0.0, "a number in [0, 1]", unitRange));
-    out.anisotropyRotation = float(number(*a, "anisotropyRotation", p, 0.0, "a finite number", any));
-    out.anisotropyTexture = textureRef(*a, "anisotropyTexture", p, textureCount);
-  }
-  if (const json* e = member(*ext, "KHR_materials_emissive_strength")) {
-    const std::string p = ep + ".KHR_materials_emissive_strength";
-    object(*e, p);
-    out.emissiveStrength = float(number(*e, "emissiveStrength", p, 1.0, "a number >= 0", nonNegative));
-  }
 }
 
 std::vector<std::string> Document::variants() const {

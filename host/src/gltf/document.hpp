@@ -53,7 +53,6 @@ class Document {
                         const char* valueKey = nullptr) const;
   Material material(const nlohmann::json& m, const std::string& path, std::size_t textureCount, bool strict,
                     std::vector<std::string>& warnings) const;
-  void extensionsOf(const nlohmann::json& m, const std::string& path, std::size_t textureCount, Material& out) const;
 
   const nlohmann::json& doc_;
   std::string source_;

@@ -1,20 +1,13 @@
-// readMaterials/parseMaterials: glTF 2.0 materials (core metallic-roughness, KHR_materials_sheen
-// ratified or draft, KHR_materials_clearcoat, KHR_materials_anisotropy, and KHR_materials_ior for
-// the engine profiles) into MaterialParams.
-// Every rejection is one line naming the file and the JSON path of the offending key; keys it
-// does not read are reported by checkMaterialKeys (model/material_keys.hpp), shared with the glTF loader.
+// readMaterials/parseMaterials: a materials file (JSON, or a .glb's JSON chunk) and its "materials"
+// array into MaterialParams. Each material object is read by the glTF material reader that the
+// glTF loader shares (model/gltf_material.hpp), with its messages and key checks.
 #include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
-#include <cerrno>
-#include <charconv>
-#include <cmath>
 #include <cstddef>
-#include <cstring>
-#include <initializer_list>
-#include <limits>
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -23,8 +16,7 @@
 #include "io/input_limits.hpp"
 #include "io/glb.hpp"
 #include "io/messages.hpp"
-#include "model/emissive_factor.hpp"
-#include "model/material_keys.hpp"
+#include "model/gltf_material.hpp"
 #include "brdfcl/error.hpp"
 #include "brdfcl/io.hpp"
 #include "brdfcl/material.hpp"
@@ -34,29 +26,10 @@ namespace {
 
 using json = nlohmann::json;
 using detail::printable;
-using detail::formatNumber;
 std::string describe(const json& v) { return detail::describeJson(v); }
 std::string withoutTag(std::string what) { return detail::withoutJsonTag(std::move(what)); }
 
 using Warn = std::function<void(const std::string&)>;
-
-// Intensity: the draft's intensityFactor, >= 0 and at most kMaxDraftIntensity.
-enum class Range { Unit, NonNegative, Intensity, Finite, Ior };
-
-const char* expectedNumber(Range r) {
-  switch (r) {
-    case Range::Unit:
-      return "a number in [0, 1]";
-    case Range::NonNegative:
-    case Range::Intensity:
-      return "a number >= 0";
-    case Range::Ior:
-      return "0 or a number >= 1";
-    case Range::Finite:
-      break;
-  }
-  return "a finite number";
-}
 
 class MaterialReader {
  public:
@@ -97,17 +70,11 @@ class MaterialReader {
 
     std::vector<MaterialParams> out;
     out.reserve(it->size());
-    const auto report = [&](const std::string& finding) {
-      if (strict_) throw Error(source_ + ": " + detail::strictError(finding));
-      if (warn_) warn_(source_ + ": " + finding);
-    };
     for (std::size_t i = 0; i < it->size(); ++i) {
       std::string textureNote;
+      // The reader reports unread keys after the material is read; the texture note comes after
+      // them, so that --strict fails with nothing printed first.
       out.push_back(material((*it)[i], i, textureNote));
-      // After the material is read, so that a value of the wrong type gets the reader's message;
-      // before the texture note, so that --strict fails with nothing printed first.
-      detail::checkMaterialKeys((*it)[i], "materials[" + std::to_string(i) + "]", detail::MaterialKeyReader::MaterialsFile,
-                                report);
       if (!textureNote.empty()) warn_(textureNote);
     }
     return out;
@@ -118,113 +85,19 @@ class MaterialReader {
     throw Error(source_ + ": " + path + ": " + message);
   }
 
-  const json* object(const json& parent, const char* key, const std::string& path) const {
-    const auto it = parent.find(key);
-    if (it == parent.end()) return nullptr;
-    if (!it->is_object()) fail(path, "expected an object, got " + describe(*it));
-    return &*it;
-  }
-
-  float number(const json& v, const std::string& path, Range range) const {
-    const char* expected = expectedNumber(range);
-    if (!v.is_number()) fail(path, std::string("expected ") + expected + ", got " + describe(v));
-    // nlohmann turns overflowing literals such as 1e999 into inf; glTF has no infinities.
-    const double d = v.get<double>();
-    bool ok = std::isfinite(d);
-    if (ok && range == Range::Unit) ok = d >= 0.0 && d <= 1.0;
-    if (ok && (range == Range::NonNegative || range == Range::Intensity)) ok = d >= 0.0;
-    if (ok && range == Range::Ior) ok = d == 0.0 || d >= 1.0;  // KHR_materials_ior's schema
-    if (!ok) fail(path, std::string("expected ") + expected + ", got " + formatNumber(d));
-    if (std::fabs(d) > std::numeric_limits<float>::max())
-      fail(path, std::string("expected ") + expected + ", got " + formatNumber(d) + " (too large for float)");
-    if (range == Range::Intensity && static_cast<float>(d) > kMaxDraftIntensity)
-      fail(path, std::string("expected ") + expected + ", got " + formatNumber(d) +
-                     " (at most 1e+30: f would overflow float)");
-    return static_cast<float>(d);
-  }
-
-  // glTF colors are RGB or RGBA arrays; only RGB matters for the BRDF.
-  Rgb color(const json& v, const std::string& path, std::size_t length, Range range) const {
-    const std::string expected = "expected an array of " + std::to_string(length) + " numbers" +
-                                 (range == Range::Unit          ? " in [0, 1]"
-                                  : range == Range::NonNegative ? " >= 0"
-                                                                : "");
-    if (!v.is_array() || v.size() != length) fail(path, expected + ", got " + describe(v));
-    Rgb rgb{};
-    for (std::size_t c = 0; c < length; ++c) {
-      const float x = number(v[c], path + "[" + std::to_string(c) + "]", range);
-      if (c < 3) rgb[c] = x;
-    }
-    return rgb;
-  }
-
-  template <typename Apply>
-  void optional(const json& obj, const char* key, const std::string& path, Apply apply) const {
-    const auto it = obj.find(key);
-    if (it != obj.end()) apply(*it, path + "." + key);
-  }
-
-  static void noteTextures(const json& obj, std::initializer_list<const char*> keys, std::vector<std::string>& found) {
-    for (const char* key : keys)
-      if (obj.contains(key)) found.emplace_back(key);
-  }
-
   // textureNote: the warning for ignored texture references, or "".
   MaterialParams material(const json& m, std::size_t index, std::string& textureNote) const {
     const std::string base = "materials[" + std::to_string(index) + "]";
     if (!m.is_object()) fail(base, "expected a material object, got " + describe(m));
-
-    MaterialParams p;
     std::vector<std::string> textures;
-    optional(m, "name", base, [&](const json& v, const std::string& path) {
-      if (!v.is_string()) fail(path, "expected a string, got " + describe(v));
-      p.name = v.get<std::string>();
-    });
-    noteTextures(m, {"normalTexture", "occlusionTexture", "emissiveTexture"}, textures);
-
-    if (const json* pbr = object(m, "pbrMetallicRoughness", base + ".pbrMetallicRoughness")) {
-      const std::string path = base + ".pbrMetallicRoughness";
-      optional(*pbr, "baseColorFactor", path,
-               [&](const json& v, const std::string& at) { p.baseColor = color(v, at, 4, Range::Unit); });
-      optional(*pbr, "metallicFactor", path,
-               [&](const json& v, const std::string& at) { p.metallic = number(v, at, Range::Unit); });
-      optional(*pbr, "roughnessFactor", path,
-               [&](const json& v, const std::string& at) { p.roughness = number(v, at, Range::Unit); });
-      noteTextures(*pbr, {"baseColorTexture", "metallicRoughnessTexture"}, textures);
-    }
-    optional(m, "emissiveFactor", base, [&](const json& v, const std::string& at) {
-      p.emissive = detail::clampEmissiveFactor(color(v, at, 3, Range::NonNegative), source_, at, strict_, warn_);
-    });
-
-    if (const json* ext = object(m, "extensions", base + ".extensions")) {
-      const std::string extPath = base + ".extensions";
-      if (const json* sheen = object(*ext, "KHR_materials_sheen", extPath + ".KHR_materials_sheen"))
-        readSheen(*sheen, extPath + ".KHR_materials_sheen", p, textures);
-      const std::string ccPath = extPath + ".KHR_materials_clearcoat";
-      if (const json* cc = object(*ext, "KHR_materials_clearcoat", ccPath)) {
-        optional(*cc, "clearcoatFactor", ccPath,
-                 [&](const json& v, const std::string& at) { p.clearcoat = number(v, at, Range::Unit); });
-        optional(*cc, "clearcoatRoughnessFactor", ccPath,
-                 [&](const json& v, const std::string& at) { p.clearcoatRoughness = number(v, at, Range::Unit); });
-        noteTextures(*cc, {"clearcoatTexture", "clearcoatRoughnessTexture", "clearcoatNormalTexture"}, textures);
-      }
-      const std::string anPath = extPath + ".KHR_materials_anisotropy";
-      if (const json* an = object(*ext, "KHR_materials_anisotropy", anPath)) {
-        p.anisotropyExtension = true;
-        optional(*an, "anisotropyStrength", anPath,
-                 [&](const json& v, const std::string& at) { p.anisotropyStrength = number(v, at, Range::Unit); });
-        optional(*an, "anisotropyRotation", anPath,
-                 [&](const json& v, const std::string& at) { p.anisotropyRotation = number(v, at, Range::Finite); });
-        noteTextures(*an, {"anisotropyTexture"}, textures);
-      }
-      // Read for the engine profiles (docs/profiles.md); the spec profile's f has no IOR input.
-      const std::string iorPath = extPath + ".KHR_materials_ior";
-      if (const json* io = object(*ext, "KHR_materials_ior", iorPath))
-        optional(*io, "ior", iorPath, [&](const json& v, const std::string& at) { p.ior = number(v, at, Range::Ior); });
-      // Other extensions (transmission, volume, ...) are not part of this BRDF: checkMaterialKeys
-      // names what each would have changed.
-    }
-
+    detail::GltfMaterialContext context;
+    context.source = source_;
+    context.reader = detail::MaterialKeyReader::MaterialsFile;
+    context.strict = strict_;
+    context.warn = warn_;
+    context.texture = [&textures](detail::MaterialTexture, const json&, const char* key, const std::string&,
+                                  const char*) { textures.emplace_back(key); };
+    MaterialParams p = detail::readGltfMaterial(m, base, context).params;
     if (!textures.empty() && warn_) {
       std::string list;
       for (const auto& t : textures) list += (list.empty() ? "" : ", ") + t;
@@ -232,41 +105,6 @@ class MaterialReader {
       textureNote = source_ + ": " + who + ": texture references are ignored (" + list + "); using factors only";
     }
     return p;
-  }
-
-  // The draft and the ratified extension share a name but not a single key; the keys decide.
-  void readSheen(const json& s, const std::string& path, MaterialParams& p, std::vector<std::string>& textures) const {
-    // "sheenFactor" is the draft's own example and disable rule for what its table calls
-    // intensityFactor: read it as that, so the draft's velvet example renders as velvet.
-    static const char* const draftKeys[] = {"intensityFactor", "sheenFactor", "colorFactor", "colorIntensityTexture"};
-    static const char* const ratifiedKeys[] = {"sheenColorFactor", "sheenRoughnessFactor", "sheenColorTexture",
-                                               "sheenRoughnessTexture"};
-    std::string draftSeen, ratifiedSeen;
-    for (const char* k : draftKeys)
-      if (s.contains(k)) draftSeen += (draftSeen.empty() ? "" : ", ") + std::string(k);
-    for (const char* k : ratifiedKeys)
-      if (s.contains(k)) ratifiedSeen += (ratifiedSeen.empty() ? "" : ", ") + std::string(k);
-    if (!draftSeen.empty() && !ratifiedSeen.empty())
-      fail(path, "mixes draft keys (" + draftSeen + ") with ratified keys (" + ratifiedSeen +
-                     "); use either intensityFactor/colorFactor or sheenColorFactor/sheenRoughnessFactor");
-
-    if (!draftSeen.empty()) {
-      p.draftSheen = true;
-      if (s.contains("intensityFactor") && s.contains("sheenFactor"))
-        fail(path, "has both intensityFactor and sheenFactor (the draft's two names for one value); keep one");
-      for (const char* key : {"intensityFactor", "sheenFactor"})
-        optional(s, key, path,
-                 [&](const json& v, const std::string& at) { p.draftIntensity = number(v, at, Range::Intensity); });
-      optional(s, "colorFactor", path,
-               [&](const json& v, const std::string& at) { p.draftColor = color(v, at, 3, Range::Unit); });
-      noteTextures(s, {"colorIntensityTexture"}, textures);
-    } else {
-      optional(s, "sheenColorFactor", path,
-               [&](const json& v, const std::string& at) { p.sheenColor = color(v, at, 3, Range::Unit); });
-      optional(s, "sheenRoughnessFactor", path,
-               [&](const json& v, const std::string& at) { p.sheenRoughness = number(v, at, Range::Unit); });
-      noteTextures(s, {"sheenColorTexture", "sheenRoughnessTexture"}, textures);
-    }
   }
 
   const std::string source_;

@@ -12,6 +12,7 @@
 
 #include "brdfcl/error.hpp"
 #include "io/option_style.hpp"
+#include "model/gltf_material.hpp"
 // Last: the kernels' C++ shim (common/host_compat.h) defines OpenCL names for what follows only.
 #include "kernels/common/material_pack.h"
 
@@ -28,51 +29,10 @@ static_assert(offsetof(brdfcl_material, clearcoat_alpha) == 68);
 namespace {
 float max3(const Rgb& c) { return std::max({c[0], c[1], c[2]}); }
 
-// The shortest text that reads back as the same float ("0.1", not 0.100000001490116).
-std::string floatText(float v) {
-  if (std::isnan(v)) return "nan";
-  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
-  char buf[32];
-  const auto r = std::to_chars(buf, buf + sizeof buf, v);
-  return std::string(buf, r.ptr);
-}
-
-enum class Domain { Unit, NonNegative, Intensity, Finite };
-
-// The same domains and wording as readMaterials (model/materials.cpp).
-void checkField(float v, Domain d, std::size_t index, const std::string& field) {
-  bool ok = std::isfinite(v);
-  if (ok && d == Domain::Unit) ok = v >= 0.0f && v <= 1.0f;
-  if (ok && (d == Domain::NonNegative || d == Domain::Intensity)) ok = v >= 0.0f;
-  const char* expected = d == Domain::Unit ? "a number in [0, 1]" : d == Domain::Finite ? "a finite number" : "a number >= 0";
-  if (!ok) throw Error(fmt::format("material {}: {} must be {}, got {}", index, field, expected, floatText(v)));
-  if (d == Domain::Intensity && v > kMaxDraftIntensity)
-    throw Error(fmt::format("material {}: {} must be {}, got {} (at most 1e+30: f would overflow float)", index, field,
-                            expected, floatText(v)));
-}
-
-void checkColor(const Rgb& c, Domain d, std::size_t index, const char* field) {
-  for (int i = 0; i < 3; ++i) checkField(c[i], d, index, fmt::format("{}[{}]", field, i));
-}
 }  // namespace
 
-void checkMaterial(const MaterialParams& m, std::size_t index) {
-  checkColor(m.baseColor, Domain::Unit, index, "baseColor");
-  checkField(m.metallic, Domain::Unit, index, "metallic");
-  checkField(m.roughness, Domain::Unit, index, "roughness");
-  checkColor(m.sheenColor, Domain::Unit, index, "sheenColor");
-  checkField(m.sheenRoughness, Domain::Unit, index, "sheenRoughness");
-  checkField(m.draftIntensity, Domain::Intensity, index, "draftIntensity");
-  checkColor(m.draftColor, Domain::Unit, index, "draftColor");
-  checkField(m.clearcoat, Domain::Unit, index, "clearcoat");
-  checkField(m.clearcoatRoughness, Domain::Unit, index, "clearcoatRoughness");
-  checkField(m.anisotropyStrength, Domain::Unit, index, "anisotropyStrength");
-  checkField(m.anisotropyRotation, Domain::Finite, index, "anisotropyRotation");
-  checkColor(m.emissive, Domain::NonNegative, index, "emissive");
-  // KHR_materials_ior's schema: 0 (F0 = 1) or at least 1.
-  if (!(std::isfinite(m.ior) && (m.ior == 0.0f || m.ior >= 1.0f)))
-    throw Error(fmt::format("material {}: ior must be 0 or a number >= 1, got {}", index, floatText(m.ior)));
-}
+// The reader's own table and messages (model/gltf_material.cpp), for MaterialParams a caller made.
+void checkMaterial(const MaterialParams& m, std::size_t index) { detail::checkMaterialFactors(m, index); }
 
 brdfcl_material packMaterial(const MaterialParams& m, Profile profile) {
   brdfcl_material_params q{};

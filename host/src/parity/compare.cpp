@@ -15,6 +15,7 @@
 #include "brdfcl/albedo.hpp"
 #include "brdfcl/error.hpp"
 #include "brdfcl/evaluator.hpp"
+#include "io/luminance.hpp"
 #include "model/profile_version.hpp"
 #include "eval/splitmix64.hpp"
 #include "io/messages.hpp"
@@ -26,7 +27,7 @@ namespace {
 constexpr double kDeg = M_PI / 180.0;
 constexpr Lobe kLobes[] = {Lobe::All, Lobe::Diffuse, Lobe::Specular, Lobe::Sheen, Lobe::Clearcoat};
 
-double luminance(const float* c) { return 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]; }
+double luminance(const float* c) { return luminance709(c[0], c[1], c[2]); }
 double luminance(const Rgb& c) { return luminance(c.data()); }
 bool finite3(const float* c) { return std::isfinite(c[0]) && std::isfinite(c[1]) && std::isfinite(c[2]); }
 

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "io/luminance.hpp"
 #include "plot/plot.hpp"
 
 namespace brdfcl {
@@ -53,9 +54,6 @@ struct ImageDiff {
   ImageDiffStats stats;
   std::vector<float> relative;  // signed d per pixel, rows from the top; NaN where not compared
 };
-
-// Rec. 709 / sRGB relative luminance of linear RGB: 0.2126 R + 0.7152 G + 0.0722 B.
-double luminance709(float r, float g, float b);
 
 // a, b: interleaved linear RGB of width x height pixels. Sizes that do not match, or a floor or
 // threshold that is negative or not finite: std::invalid_argument (the CLI checks them first).

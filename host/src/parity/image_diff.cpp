@@ -69,8 +69,6 @@ DifferenceStats summarize(const std::vector<double>& values, int width) {
 }
 }  // namespace
 
-double luminance709(float r, float g, float b) { return 0.2126 * r + 0.7152 * g + 0.0722 * b; }
-
 ImageDiff diffImages(const std::vector<float>& a, const std::vector<float>& b, int width, int height,
                      const ImageDiffOptions& options) {
   const std::size_t n = width > 0 && height > 0 ? std::size_t(width) * std::size_t(height) : 0;

@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include "brdfcl/error.hpp"
+#include "io/luminance.hpp"
 #include "io/option_style.hpp"
 #include "runtime/opencl.hpp"
 
@@ -64,7 +65,7 @@ EnvironmentCdf environmentCdf(const std::vector<float>& planes, int w, int h) {
     const double sinTheta = std::sin((y + 0.5) / h * M_PI);
     for (int x = 0; x < w; ++x) {
       const std::size_t i = std::size_t(y) * w + x;
-      const double lum = 0.2126 * planes[i] + 0.7152 * planes[n + i] + 0.0722 * planes[2 * n + i];
+      const double lum = luminance709(planes[i], planes[n + i], planes[2 * n + i]);
       weight[i] = std::max(lum, 0.0) * sinTheta;
       rowSum[y] += weight[i];
     }
