@@ -33,9 +33,10 @@ static inline float2 ggx_albedo_ab(float r, float nv) {
    0.96 base colour, both under what the coat and the sheen's albedo scaling leave. Each W_t is
    then split by K_t^4, K_t a lobe's breadth (docs/sampling.md): W_t K_t^4 goes to its own sampler
    and the rest to a hemisphere sampler that loses no directions: the cosine one for GGX, whose
-   broad lobes it follows better than the VNDF (which ignores the masking of L), the uniform one
-   for the sheen, which peaks towards grazing L where the cosine density starves it. The cosine hemisphere keeps a floor of 0.01, so
-   every direction where f > 0 stays reachable whatever the estimates. */
+   broad lobes it follows better than the VNDF (which ignores the masking of L), mostly the
+   uniform one for the sheen, which peaks towards grazing L where the cosine density starves it.
+   The cosine hemisphere keeps a floor of 0.01, so every direction where f > 0 stays reachable
+   whatever the estimates. */
 static inline int sheen_ashikhmin(const material_lanes m) { return SAMPLE_ASHIKHMIN && m.draft < 0.5f; }
 
 static inline void lobe_probabilities(const material_lanes m, float NdotV, __global const float* albedo_e,

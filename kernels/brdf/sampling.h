@@ -1,6 +1,7 @@
 /* Importance sampling of the layered BRDF's lobes, over width-generic lanes: GGX visible normals
    (Heitz 2018, "Sampling the GGX Distribution of Visible Normals", JCGT 7(4); Dupuy & Benyoub 2023,
-   "Sampling Visible GGX Normals with Spherical Caps"), anisotropic or not, the sheen distributions
+   "Sampling Visible GGX Normals with Spherical Caps"; Eto & Tokuyoshi 2023, "Bounded VNDF Sampling
+   for Smith-GGX Reflections"), anisotropic or not, the sheen distributions
    (Charlie, Ashikhmin) exactly, and the cosine and uniform hemispheres. Each sampler has its pdf in
    solid angle of L beside it; docs/sampling.md derives them. */
 #ifndef BRDFCL_SAMPLING_H
