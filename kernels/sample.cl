@@ -13,18 +13,30 @@
 #define SAMPLE_ASHIKHMIN 0
 #endif
 
-enum { LOBE_DIFFUSE, LOBE_SPECULAR, LOBE_SHEEN, LOBE_COAT, LOBE_COUNT };
+/* LOBE_UNIFORM: the uniform hemisphere, which takes the share of a sheen lobe that its own sampler
+   serves poorly (docs/sampling.md). */
+enum { LOBE_DIFFUSE, LOBE_SPECULAR, LOBE_SHEEN, LOBE_COAT, LOBE_UNIFORM, LOBE_COUNT };
 
 static inline float luminance3(float r, float g, float b) { return 0.2126f * r + 0.7152f * g + 0.0722f * b; }
 
-/* Lobe probabilities at V. Under --lobe one lobe takes all. Otherwise each lobe's estimated
-   albedo W_t (the Fresnel-weighted diffuse, Schlick's specular reflectance, the sheen's E table,
-   the coat's Fresnel, each under the layers above it) is split by K_t, the share of its sampler's
-   directions that land above the horizon at normal incidence: W_t K_t goes to the lobe's own
-   sampler and W_t (1 - K_t) to the cosine hemisphere, which serves rough lobes better than a
-   sampler that loses half its directions (GGX at alpha = 1) or nearly all (Charlie at small
-   alpha). The cosine hemisphere keeps a floor of 0.01, so every direction where f > 0 stays
-   reachable whatever the estimates. docs/sampling.md gives the K_t. */
+/* Karis 2014, "Physically Based Shading on Mobile" (EnvBRDFApprox): the directional albedo of
+   a GGX lobe with Schlick's Fresnel, F0 A + B, fitted in perceptual roughness r and N.V. */
+static inline float2 ggx_albedo_ab(float r, float nv) {
+  float rx = 1.0f - r, ry = 0.0425f - 0.0275f * r, rz = 1.04f - 0.572f * r, rw = 0.022f * r - 0.04f;
+  float a004 = min(rx * rx, exp2(-9.28f * nv)) * rx + ry;
+  return (float2)(rz - 1.04f * a004, rw + 1.04f * a004);
+}
+
+/* Lobe probabilities at V. Under --lobe one lobe takes all. Otherwise each lobe's directional
+   albedo W_t is estimated under the layers above it: the coat's Fresnel times its GGX albedo;
+   the sheen's colour times its E table; the specular's GGX albedo (Karis's fit) and the diffuse's
+   0.96 base colour, both under what the coat and the sheen's albedo scaling leave. Each W_t is
+   then split by K_t^4, K_t a lobe's breadth (docs/sampling.md): W_t K_t^4 goes to its own sampler
+   and the rest to a hemisphere sampler that loses no directions: the cosine one for GGX, whose
+   broad lobes it follows better than the VNDF (which ignores the masking of L), mostly the
+   uniform one for the sheen, which peaks towards grazing L where the cosine density starves it.
+   The cosine hemisphere keeps a floor of 0.01, so every direction where f > 0 stays reachable
+   whatever the estimates. */
 static inline int sheen_ashikhmin(const material_lanes m) { return SAMPLE_ASHIKHMIN && m.draft < 0.5f; }
 
 static inline void lobe_probabilities(const material_lanes m, float NdotV, __global const float* albedo_e,
@@ -37,6 +49,7 @@ static inline void lobe_probabilities(const material_lanes m, float NdotV, __glo
     return;
   }
   float nv = clamp(NdotV, 1e-4f, 1.0f), fw = pow5w(1.0f - nv);
+  float2 coat_ab = ggx_albedo_ab(sqrt(m.clearcoat_alpha), nv);
   float coatF = BRDFCL_HAS_CLEARCOAT ? m.clearcoat * (0.04f + 0.96f * fw) : 0.0f;
   float sheen_lum = m.sheen_weight * luminance3(m.sheen_r, m.sheen_g, m.sheen_b);
   int has_sheen = BRDFCL_HAS_SHEEN && sheen_lum > 0.0f;
@@ -46,31 +59,40 @@ static inline void lobe_probabilities(const material_lanes m, float NdotV, __glo
   /* E may exceed 1 / sheen_max (the fitted sheen visibility is not energy-conserving at grazing
      views and small roughness): what the sheen leaves below is then taken as nothing. */
   float below = (1.0f - coatF) * max(1.0f - m.sheen_max * e_sheen, 0.0f);
-  float spec_f = (1.0f - m.metallic) * (0.04f + 0.96f * fw) +
-                 m.metallic * luminance3(m.base_r + (1.0f - m.base_r) * fw, m.base_g + (1.0f - m.base_g) * fw,
-                                         m.base_b + (1.0f - m.base_b) * fw);
-  float W_diffuse = below * (1.0f - m.metallic) * 0.96f * (1.0f - fw) * luminance3(m.base_r, m.base_g, m.base_b);
+  /* Anisotropic GGX as the isotropic lobe of the same alpha_t alpha_b. */
+  float2 spec_ab = ggx_albedo_ab(sqrt(sqrt(m.alpha_t * m.alpha)), nv);
+  float spec_f = (1.0f - m.metallic) * (0.04f * spec_ab.x + spec_ab.y) +
+                 m.metallic * (luminance3(m.base_r, m.base_g, m.base_b) * spec_ab.x + spec_ab.y);
+  float W_diffuse = below * (1.0f - m.metallic) * 0.96f * luminance3(m.base_r, m.base_g, m.base_b);
   float W_spec = below * spec_f;
   float W_sheen = has_sheen ? (1.0f - coatF) * sheen_lum * e_sheen : 0.0f;
-  float W_coat = coatF;
-  /* GGX: tan^2(theta_h) < 1 with probability 1 / (1 + alpha^2). Charlie: sin^2 < 1/2 with
-     probability 2^-(k + 1). Ashikhmin: half its cosine part, and t = cot^2 > 1 in its Gaussian. */
+  float W_coat = coatF * (coat_ab.x + coat_ab.y);
+  /* Breadth: GGX's share of normals with tan^2(theta_h) < 1, 1 / (1 + alpha_t alpha_b); Charlie's
+     with sin^2 < 1/2, 2^-(k + 1); Ashikhmin's, half its cosine part and t = cot^2 > 1 in its
+     Gaussian. */
   float K_spec = 1.0f / (1.0f + m.alpha_t * m.alpha);
   float K_coat = 1.0f / (1.0f + m.clearcoat_alpha * m.clearcoat_alpha);
   float m2 = m.sheen_alpha * m.sheen_alpha, pc = 1.0f / (1.0f + 4.0f * m2);
   float K_sheen = sheen_ashikhmin(m) ? 0.5f * pc + (1.0f - pc) * exp(-1.0f / m2)
                                      : exp2(-(0.5f / m.sheen_alpha + 1.0f));
-  /* A sampler that loses directions is also broad (the loss grows with alpha): beside its losses it
-     gains little over the cosine hemisphere, so its share falls faster than K, as K^4. */
+  /* A GGX lobe's own share: K^4 where it stands alone, falling to K^8 where a diffuse lobe, which
+     the cosine hemisphere samples exactly, outweighs it. */
   K_spec *= K_spec, K_spec *= K_spec;
   K_coat *= K_coat, K_coat *= K_coat;
+  K_spec = K_spec * K_spec + (K_spec - K_spec * K_spec) * W_spec / max(W_spec + W_diffuse, 1e-30f);
+  K_coat = K_coat * K_coat + (K_coat - K_coat * K_coat) * W_coat / max(W_coat + W_diffuse, 1e-30f);
   K_sheen *= K_sheen, K_sheen *= K_sheen;
+  /* The ratified sheen's albedo scaling takes from the base near grazing L what the sheen adds
+     there, except at grazing views; the draft's sheen is added whole. */
+  float to_uniform = m.draft > 0.5f ? 1.0f : 1.0f - nv;
   float w[LOBE_COUNT];
   w[LOBE_SPECULAR] = W_spec * K_spec;
   w[LOBE_SHEEN] = W_sheen * K_sheen;
   w[LOBE_COAT] = W_coat * K_coat;
-  w[LOBE_DIFFUSE] = W_diffuse + W_spec * (1.0f - K_spec) + W_sheen * (1.0f - K_sheen) + W_coat * (1.0f - K_coat) + 0.01f;
-  float total = w[0] + w[1] + w[2] + w[3];
+  w[LOBE_UNIFORM] = W_sheen * (1.0f - K_sheen) * to_uniform;
+  w[LOBE_DIFFUSE] = W_diffuse + W_spec * (1.0f - K_spec) + W_sheen * (1.0f - K_sheen) * (1.0f - to_uniform) +
+                    W_coat * (1.0f - K_coat) + 0.01f;
+  float total = w[0] + w[1] + w[2] + w[3] + w[4];
   for (int t = 0; t < LOBE_COUNT; ++t) p[t] = w[t] / total;
 }
 
@@ -87,8 +109,9 @@ static inline vec3w from_aniso(const material_lanes m, vec3w v) {
 /* Each lobe's pdf of L (solid angle), L and V unit vectors in the shading frame. */
 static inline float lobe_pdf(int t, const material_lanes m, vec3w L, vec3w V) {
   if (t == LOBE_DIFFUSE) return PdfCosineHemisphere(L);
-  if (t == LOBE_SPECULAR) return PdfGGXVNDFReflect(to_aniso(m, L), to_aniso(m, V), m.alpha_t, m.alpha);
-  if (t == LOBE_COAT) return PdfGGXVNDFReflect(L, V, m.clearcoat_alpha, m.clearcoat_alpha);
+  if (t == LOBE_UNIFORM) return PdfUniformHemisphere(L);
+  if (t == LOBE_SPECULAR) return PdfGGXVNDFBoundedReflect(to_aniso(m, L), to_aniso(m, V), m.alpha_t, m.alpha);
+  if (t == LOBE_COAT) return PdfGGXVNDFBoundedReflect(L, V, m.clearcoat_alpha, m.clearcoat_alpha);
   float hx = L.x + V.x, hy = L.y + V.y, hz = L.z + V.z;
   float hxy2 = hx * hx + hy * hy, hn2 = hz * hz;
   float D = sheen_ashikhmin(m) ? D_Ashikhmin(hxy2, hn2, m.sheen_alpha) : D_Charlie(hxy2, hn2, m.sheen_alpha);
@@ -107,11 +130,12 @@ static inline float mixture_pdf(const float p[LOBE_COUNT], const material_lanes 
 /* A direction from lobe t with (u1, u2); L.z <= 0 (or no reflection) when it produced none. */
 static inline vec3w lobe_sample(int t, const material_lanes m, vec3w V, float u1, float u2) {
   if (t == LOBE_DIFFUSE) return SampleCosineHemisphere(u1, u2);
+  if (t == LOBE_UNIFORM) return SampleUniformHemisphere(u1, u2);
   if (t == LOBE_SPECULAR) {
     vec3w Va = to_aniso(m, V);
-    return from_aniso(m, reflect_about(Va, SampleGGXVNDFCaps(Va, m.alpha_t, m.alpha, u1, u2)));
+    return from_aniso(m, reflect_about(Va, SampleGGXVNDFBounded(Va, m.alpha_t, m.alpha, u1, u2)));
   }
-  if (t == LOBE_COAT) return reflect_about(V, SampleGGXVNDFCaps(V, m.clearcoat_alpha, m.clearcoat_alpha, u1, u2));
+  if (t == LOBE_COAT) return reflect_about(V, SampleGGXVNDFBounded(V, m.clearcoat_alpha, m.clearcoat_alpha, u1, u2));
   vec3w H = sheen_ashikhmin(m) ? SampleAshikhminNormal(m.sheen_alpha, u1, u2) : SampleCharlieNormal(m.sheen_alpha, u1, u2);
   if (dot3w(V, H) <= 0.0f) {
     vec3w none = {0.0f, 0.0f, -1.0f};

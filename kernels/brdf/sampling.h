@@ -1,6 +1,7 @@
 /* Importance sampling of the layered BRDF's lobes, over width-generic lanes: GGX visible normals
    (Heitz 2018, "Sampling the GGX Distribution of Visible Normals", JCGT 7(4); Dupuy & Benyoub 2023,
-   "Sampling Visible GGX Normals with Spherical Caps"), anisotropic or not, the sheen distributions
+   "Sampling Visible GGX Normals with Spherical Caps"; Eto & Tokuyoshi 2023, "Bounded VNDF Sampling
+   for Smith-GGX Reflections"), anisotropic or not, the sheen distributions
    (Charlie, Ashikhmin) exactly, and the cosine and uniform hemispheres. Each sampler has its pdf in
    solid angle of L beside it; docs/sampling.md derives them. */
 #ifndef BRDFCL_SAMPLING_H
@@ -92,6 +93,43 @@ BRDF_FN vec3w SampleGGXVNDFCaps(vec3w Ve, realw ax, realw ay, realw u1, realw u2
   vec3w Nh = {st * cos(phi) + Vh.x, st * sin(phi) + Vh.y, z + Vh.z};
   vec3w Ne = {ax * Nh.x, ay * Nh.y, max(Nh.z, (realw)(0.0f))};
   return vec3w_normalize(Ne);
+}
+
+/* Eto & Tokuyoshi 2023, "Bounded VNDF Sampling for Smith-GGX Reflections", listing 1: the
+   spherical cap of SampleGGXVNDFCaps cut lower, at z = -k Vh.z with
+   k = (1 - a^2) s^2 / (s^2 + a^2 Ve.z^2), a = min(ax, ay), s = 1 + |Ve.xy|. The part cut away
+   holds only normals whose reflection of Ve lies below the horizon, so the sampler keeps the same
+   density shape above it and loses fewer directions: none at normal incidence (isotropic).
+   Ve.z > 0. */
+BRDF_FN realw BoundedVNDFK(vec3w Ve, realw ax, realw ay) {
+  realw a = clamp(min(ax, ay), (realw)(0.0f), (realw)(1.0f));
+  realw s = 1.0f + sqrt(Ve.x * Ve.x + Ve.y * Ve.y);
+  realw a2 = a * a, s2 = s * s;
+  return (1.0f - a2) * s2 / (s2 + a2 * Ve.z * Ve.z);
+}
+BRDF_FN vec3w SampleGGXVNDFBounded(vec3w Ve, realw ax, realw ay, realw u1, realw u2) {
+  vec3w s = {ax * Ve.x, ay * Ve.y, Ve.z};
+  vec3w Vh = vec3w_normalize(s);
+  realw b = BoundedVNDFK(Ve, ax, ay) * Vh.z;
+  realw phi = 2.0f * M_PI_F * u1;
+  realw z = (1.0f - u2) * (1.0f + b) - b;
+  realw st = sqrt(clamp(1.0f - z * z, (realw)(0.0f), (realw)(1.0f)));
+  vec3w Nh = {st * cos(phi) + Vh.x, st * sin(phi) + Vh.y, z + Vh.z};
+  vec3w Ne = {ax * Nh.x, ay * Nh.y, max(Nh.z, (realw)(0.0f))};
+  return vec3w_normalize(Ne);
+}
+
+/* pdf of L = reflect(V, H), H from SampleGGXVNDFBounded: the VNDF's G1(V) D(H) / (4 V.z) times
+   the ratio of the two caps' areas, (1 + Vh.z) / (1 + b), which simplifies to
+   D(H) / (2 (t + k V.z)) with t = |(ax Vx, ay Vy, Vz)| (Eto & Tokuyoshi 2023, eq. 8). 0 unless
+   L.z > 0. L, V in the lobe's frame, V.z > 0. */
+BRDF_FN realw PdfGGXVNDFBoundedReflect(vec3w L, vec3w V, realw ax, realw ay) {
+  vec3w h = {L.x + V.x, L.y + V.y, L.z + V.z};
+  realw h2 = max(dot3w(h, h), (realw)(1.0e-30f));
+  realw D = D_GGX_Anisotropic(h.x, h.y, h.z, h2, ax, ay);
+  realw t = sqrt(ax * ax * V.x * V.x + ay * ay * V.y * V.y + V.z * V.z);
+  realw pdf = D / (2.0f * (t + BoundedVNDFK(V, ax, ay) * V.z));
+  return keep_or_zero(pdf, (L.z > 0.0f) & (h.z > 0.0f));
 }
 
 /* A microfacet normal at polar cosine ct (sine st) and azimuth 2 pi u. */

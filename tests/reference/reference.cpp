@@ -5,9 +5,11 @@
 
 #include <algorithm>
 #include <chrono>
+#include <map>
 #include <cmath>
 #include <mutex>
 #include <thread>
+#include <tuple>
 #include <vector>
 
 namespace ref {
@@ -523,6 +525,30 @@ double sheenAlbedo(double mu, double sheenRoughness, SheenDistribution d, SheenV
   return evalPiece(p, muToX(p.map, mu, sheenRoughness * sheenRoughness), u);
 }
 
+double tabulatedSheenAlbedo(double mu, double sheenRoughness, SheenDistribution d, SheenVisibility v) {
+  // docs/model.md, "Sheen, ratified": 320 x 320 nodes at mu = s^2, r = t^2, bilinear in (s, t);
+  // the nodes' values are this reference's own E, remembered as they are asked for.
+  constexpr int kSize = 320;
+  static std::mutex mutex;
+  static std::map<std::tuple<int, int, int>, double> nodes;
+  auto node = [&](int i, int j) {
+    const int combo = comboIndex(d, v);
+    std::lock_guard<std::mutex> lock(mutex);
+    const auto key = std::make_tuple(combo, i, j);
+    auto it = nodes.find(key);
+    if (it != nodes.end()) return it->second;
+    const double s = double(i) / (kSize - 1), t = double(j) / (kSize - 1);
+    return nodes[key] = sheenAlbedo(s * s, t * t, d, v);
+  };
+  const double x = std::sqrt(std::clamp(mu, 0.0, 1.0)) * (kSize - 1);
+  const double y = std::sqrt(std::clamp(sheenRoughness, 0.0, 1.0)) * (kSize - 1);
+  const int x0 = std::min(int(x), kSize - 2), y0 = std::min(int(y), kSize - 2);
+  const double fx = x - x0, fy = y - y0;
+  const double top = node(x0, y0) + (node(x0 + 1, y0) - node(x0, y0)) * fx;
+  const double bottom = node(x0, y0 + 1) + (node(x0 + 1, y0 + 1) - node(x0, y0 + 1)) * fx;
+  return top + (bottom - top) * fy;
+}
+
 double precomputeSheenAlbedo(SheenDistribution d, SheenVisibility v) {
   double seconds = 0.0;
   table(d, v, &seconds);
@@ -551,7 +577,11 @@ struct Lobes {
   Rgb diffuse{}, specular{}, sheen{}, clearcoat{};
 };
 
-Lobes evalLobes(const brdfcl::MaterialParams& m, const brdfcl::EvalOptions& o, Vec3 L, Vec3 V) {
+Lobes evalLobes(const brdfcl::MaterialParams& m, const brdfcl::EvalOptions& o, Vec3 L, Vec3 V,
+                bool tabulated = false) {
+  auto sheenAlbedo = [tabulated](double mu, double r, SheenDistribution d, SheenVisibility v) {
+    return tabulated ? tabulatedSheenAlbedo(mu, r, d, v) : ref::sheenAlbedo(mu, r, d, v);
+  };
   Lobes out;
   L = normalize(L);
   V = normalize(V);
@@ -650,8 +680,8 @@ Lobes evalLobes(const brdfcl::MaterialParams& m, const brdfcl::EvalOptions& o, V
 
 }  // namespace
 
-Rgb brdf(const brdfcl::MaterialParams& m, const brdfcl::EvalOptions& o, Vec3 L, Vec3 V) {
-  const Lobes l = evalLobes(m, o, L, V);
+namespace {
+Rgb pickLobes(const Lobes& l, const brdfcl::EvalOptions& o) {
   switch (o.lobe) {
     case brdfcl::Lobe::Diffuse:
       return l.diffuse;
@@ -667,6 +697,15 @@ Rgb brdf(const brdfcl::MaterialParams& m, const brdfcl::EvalOptions& o, Vec3 L, 
   Rgb sum{};
   for (int c = 0; c < 3; ++c) sum[c] = l.diffuse[c] + l.specular[c] + l.sheen[c] + l.clearcoat[c];
   return sum;
+}
+}  // namespace
+
+Rgb brdf(const brdfcl::MaterialParams& m, const brdfcl::EvalOptions& o, Vec3 L, Vec3 V) {
+  return pickLobes(evalLobes(m, o, L, V), o);
+}
+
+Rgb brdfTabulated(const brdfcl::MaterialParams& m, const brdfcl::EvalOptions& o, Vec3 L, Vec3 V) {
+  return pickLobes(evalLobes(m, o, L, V, true), o);
 }
 
 // ============================================================================================

@@ -71,6 +71,12 @@ double sheenAlbedo(double mu, double sheenRoughness, brdfcl::SheenDistribution d
 // of the outer integral; the default gives errors far below 1e-9.
 double sheenAlbedoIntegral(double mu, double sheenRoughness, brdfcl::SheenDistribution d,
                            brdfcl::SheenVisibility v, double tol = 1e-11);
+// E looked up as the layered BRDF's table is defined (docs/model.md, "Sheen, ratified": 320 x 320
+// nodes at mu = s^2, r = t^2, bilinear in (s, t) = (sqrt mu, sqrt r)), each node's value from
+// sheenAlbedo() (remembered; nodes at mu < 0.01 integrate, r = 0 is singular). What the kernels'
+// f and lobe probabilities see, for comparisons tighter than the table's interpolation error.
+double tabulatedSheenAlbedo(double mu, double sheenRoughness, brdfcl::SheenDistribution d,
+                            brdfcl::SheenVisibility v);
 // Builds the tables of distribution d (both visibilities) now instead of on first use; returns
 // the seconds it took, 0 when they were already built.
 double precomputeSheenAlbedo(brdfcl::SheenDistribution d, brdfcl::SheenVisibility v);
@@ -84,6 +90,9 @@ double precomputeSheenAlbedo(brdfcl::SheenDistribution d, brdfcl::SheenVisibilit
 // the draft sheen (draftSheen: always Charlie D, Ashikhmin V, roughness^2, no options), then the
 // clearcoat (if clearcoat != 0) with Fc on N.V. Sheen E lookups use sheenAlbedo().
 Rgb brdf(const brdfcl::MaterialParams& m, const brdfcl::EvalOptions& o, Vec3 L, Vec3 V);
+
+// brdf() with every E from tabulatedSheenAlbedo().
+Rgb brdfTabulated(const brdfcl::MaterialParams& m, const brdfcl::EvalOptions& o, Vec3 L, Vec3 V);
 
 // ---- Test helpers ----
 

@@ -43,6 +43,61 @@ double pdfGGXVNDF(Vec3 L, Vec3 V, double at, double ab, double rotation) {
   return G1 * D_GGX_Anisotropic(H.z, ht, hb, at, ab) / (4.0 * V.z);
 }
 
+namespace {
+// Eto & Tokuyoshi 2023, eq. 5 and 6: the bounded cap's k for V (in the lobe's frame, V.z > 0).
+double boundedK(Vec3 V, double at, double ab) {
+  const double a = std::clamp(std::min(at, ab), 0.0, 1.0), s = 1.0 + std::hypot(V.x, V.y);
+  return (1.0 - a * a) * s * s / (s * s + a * a * V.z * V.z);
+}
+Vec3 rotated(Vec3 v, double rotation) {
+  const double c = std::cos(rotation), s = std::sin(rotation);
+  return {v.x * c + v.y * s, v.y * c - v.x * s, v.z};
+}
+}  // namespace
+
+double pdfBoundedVNDF(Vec3 L, Vec3 V, double at, double ab, double rotation) {
+  if (V.z <= 0.0 || L.z <= 0.0) return 0.0;
+  const Vec3 H = unit({L.x + V.x, L.y + V.y, L.z + V.z});
+  if (H.z <= 0.0) return 0.0;
+  const Vec3 h = rotated(H, rotation), v = rotated(V, rotation);
+  const double t = std::sqrt(at * at * v.x * v.x + ab * ab * v.y * v.y + v.z * v.z);
+  return D_GGX_Anisotropic(h.z, h.x, h.y, at, ab) / (2.0 * (t + boundedK(v, at, ab) * v.z));
+}
+
+double boundedVNDFKeptMass(Vec3 V, double at, double ab, double rotation) {
+  const Vec3 v = rotated(V, rotation);
+  const Vec3 vh = unit({at * v.x, ab * v.y, v.z});
+  const double b = boundedK(v, at, ab) * vh.z;
+  // The sampler's construction: a point o uniform on the cap z in [-b, 1], H = unstretch(o + vh),
+  // L = reflect(V, H); kept where L.z > 0.
+  auto lz = [&](double phi, double z) {
+    const double st = std::sqrt(std::max(0.0, 1.0 - z * z));
+    const Vec3 H = unit({at * (st * std::cos(phi) + vh.x), ab * (st * std::sin(phi) + vh.y), std::max(z + vh.z, 0.0)});
+    return 2.0 * dot3(v, H) * H.z - v.z;
+  };
+  auto keptAlong = [&](double phi) {
+    // Kept length of [-b, 1] at this azimuth: a grid, each sign change refined by bisection.
+    constexpr int kSteps = 512;
+    double kept = 0.0, z0 = -b, f0 = lz(phi, z0);
+    for (int i = 1; i <= kSteps; ++i) {
+      const double z1 = -b + (1.0 + b) * i / kSteps, f1 = lz(phi, z1);
+      if ((f0 > 0.0) == (f1 > 0.0)) {
+        if (f0 > 0.0) kept += z1 - z0;
+      } else {
+        double lo = z0, hi = z1;
+        for (int k = 0; k < 60; ++k) {
+          const double mid = 0.5 * (lo + hi);
+          ((lz(phi, mid) > 0.0) == (f0 > 0.0) ? lo : hi) = mid;
+        }
+        kept += f0 > 0.0 ? lo - z0 : z1 - lo;
+      }
+      z0 = z1, f0 = f1;
+    }
+    return kept;
+  };
+  return integrate(keptAlong, 0.0, 2.0 * kPi, 1e-8) / (2.0 * kPi * (1.0 + b));
+}
+
 double pdfSheen(Vec3 L, Vec3 V, double alpha, brdfcl::SheenDistribution d) {
   const Vec3 H = unit({L.x + V.x, L.y + V.y, L.z + V.z});
   const double VdotH = dot3(V, H);
@@ -75,35 +130,50 @@ std::array<double, kLobeCount> lobeProbabilities(const brdfcl::MaterialParams& m
     case brdfcl::Lobe::Clearcoat: p[kLobeClearcoat] = 1; return p;
     case brdfcl::Lobe::All: break;
   }
+  const SamplingAlphas a = samplingAlphas(m);
   const double nv = std::clamp(V.z, 1e-4, 1.0), fw = std::pow(1.0 - nv, 5.0);
+  // A GGX lobe's directional albedo with Schlick's Fresnel, F0 A + B, by Karis's 2014 fit
+  // (EnvBRDFApprox) in perceptual roughness r.
+  auto ggxAlbedo = [nv](double r, double f0) {
+    const double rx = 1.0 - r, ry = 0.0425 - 0.0275 * r, rz = 1.04 - 0.572 * r, rw = 0.022 * r - 0.04;
+    const double a004 = std::min(rx * rx, std::exp2(-9.28 * nv)) * rx + ry;
+    return f0 * (rz - 1.04 * a004) + (rw + 1.04 * a004);
+  };
   const double coatF = m.clearcoat * (0.04 + 0.96 * fw);
   const auto& sc = m.sheenColor;
   const double sheenLum = luminance(sc[0], sc[1], sc[2]);
   const double sheenMax = std::max({sc[0], sc[1], sc[2]});
-  const double e = sheenLum > 0.0 ? sheenAlbedo(nv, std::sqrt(samplingAlphas(m).sheen), o.sheenDistribution,
-                                                o.sheenVisibility)
+  // E as the kernels' table gives it (docs/model.md), looked up at sqrt(alpha_s).
+  const double e = sheenLum > 0.0 ? tabulatedSheenAlbedo(nv, std::sqrt(a.sheen), o.sheenDistribution, o.sheenVisibility)
                                   : 0.0;
   const double below = (1.0 - coatF) * std::max(1.0 - sheenMax * e, 0.0);
   const auto& b = m.baseColor;
-  const double met = m.metallic;
-  const double specF = (1.0 - met) * (0.04 + 0.96 * fw) +
-                       met * luminance(b[0] + (1 - b[0]) * fw, b[1] + (1 - b[1]) * fw, b[2] + (1 - b[2]) * fw);
-  const double Wd = below * (1.0 - met) * 0.96 * (1.0 - fw) * luminance(b[0], b[1], b[2]);
-  const double Ws = below * specF, Wsh = sheenLum > 0.0 ? (1.0 - coatF) * sheenLum * e : 0.0, Wc = coatF;
-  // The shares of each sampler's directions above the horizon at normal incidence (docs/sampling.md).
-  const SamplingAlphas a = samplingAlphas(m);
+  const double met = m.metallic, baseLum = luminance(b[0], b[1], b[2]);
+  const double rs = std::sqrt(std::sqrt(a.at * a.ab));  // anisotropic GGX as the isotropic of alpha_t alpha_b
+  const double specF = (1.0 - met) * ggxAlbedo(rs, 0.04) + met * ggxAlbedo(rs, baseLum);
+  const double Wd = below * (1.0 - met) * 0.96 * baseLum;
+  const double Ws = below * specF, Wsh = sheenLum > 0.0 ? (1.0 - coatF) * sheenLum * e : 0.0;
+  const double Wc = coatF * ggxAlbedo(std::sqrt(a.coat), 1.0);
+  // Each lobe's breadth (docs/sampling.md).
   const double Ks = 1.0 / (1.0 + a.at * a.ab), Kc = 1.0 / (1.0 + a.coat * a.coat);
   const double m2 = a.sheen * a.sheen, pc = 1.0 / (1.0 + 4.0 * m2);
   const double Ksh = o.sheenDistribution == brdfcl::SheenDistribution::Ashikhmin
                          ? 0.5 * pc + (1.0 - pc) * std::exp(-1.0 / m2)
                          : std::pow(2.0, -(0.5 / a.sheen + 1.0));
-  const double Ks4 = std::pow(Ks, 4.0), Kc4 = std::pow(Kc, 4.0), Ksh4 = std::pow(Ksh, 4.0);
+  // A GGX lobe's own share: K^4 alone, K^8 where the diffuse lobe outweighs it.
+  auto share = [Wd](double K, double W) {
+    const double k4 = std::pow(K, 4.0), k8 = k4 * k4;
+    return k8 + (k4 - k8) * W / std::max(W + Wd, 1e-30);
+  };
+  const double Ks4 = share(Ks, Ws), Kc4 = share(Kc, Wc), Ksh4 = std::pow(Ksh, 4.0);
+  const double toUniform = m.draftSheen ? 1.0 : 1.0 - nv;
   double w[kLobeCount];
   w[kLobeSpecular] = Ws * Ks4;
   w[kLobeSheen] = Wsh * Ksh4;
   w[kLobeClearcoat] = Wc * Kc4;
-  w[kLobeDiffuse] = Wd + Ws * (1.0 - Ks4) + Wsh * (1.0 - Ksh4) + Wc * (1.0 - Kc4) + 0.01;
-  const double total = w[0] + w[1] + w[2] + w[3];
+  w[kLobeUniform] = Wsh * (1.0 - Ksh4) * toUniform;
+  w[kLobeDiffuse] = Wd + Ws * (1.0 - Ks4) + Wsh * (1.0 - Ksh4) * (1.0 - toUniform) + Wc * (1.0 - Kc4) + 0.01;
+  const double total = w[0] + w[1] + w[2] + w[3] + w[4];
   for (int t = 0; t < kLobeCount; ++t) p[t] = w[t] / total;
   return p;
 }
@@ -112,9 +182,10 @@ double lobePdf(int t, const brdfcl::MaterialParams& m, const brdfcl::EvalOptions
   const SamplingAlphas a = samplingAlphas(m);
   switch (t) {
     case kLobeDiffuse: return pdfCosine(L);
-    case kLobeSpecular: return pdfGGXVNDF(L, V, a.at, a.ab, a.rotation);
+    case kLobeSpecular: return pdfBoundedVNDF(L, V, a.at, a.ab, a.rotation);
     case kLobeSheen: return pdfSheen(L, V, a.sheen, o.sheenDistribution);
-    default: return pdfGGXVNDF(L, V, a.coat, a.coat, 0.0);
+    case kLobeUniform: return L.z > 0.0 ? 1.0 / (2.0 * kPi) : 0.0;
+    default: return pdfBoundedVNDF(L, V, a.coat, a.coat, 0.0);
   }
 }
 
