@@ -99,7 +99,7 @@ class RowLaunches {
   // Where the launch writes `rows` rows that belong at p.
   Wrapped out(float* p, std::size_t rows) {
     if (stage_)
-      return Wrapped{stage_->out(12 * rows, [p, rows](const void* s) { std::memcpy(p, s, 12 * rows); }), 0};
+      return Wrapped{stage_->out(12 * rows, [p, rows](const void* s) { copySpans({{p, s, 12 * rows}}); }), 0};
     return wrap(p, 12 * rows, 4, CL_MEM_WRITE_ONLY);
   }
   // Where a grid launch writes `materials` stretches of `rows` rows that belong `stride` rows
@@ -107,8 +107,10 @@ class RowLaunches {
   std::pair<Wrapped, std::size_t> outGrid(float* p, std::size_t materials, std::size_t rows, std::size_t stride) {
     if (!stage_) return {wrap(p, 12 * ((materials - 1) * stride + rows), 4, CL_MEM_WRITE_ONLY), stride};
     const auto deliver = [=](const void* s) {
+      std::vector<CopySpan> spans;
       for (std::size_t m = 0; m < materials; ++m)
-        std::memcpy(p + 3 * m * stride, static_cast<const float*>(s) + 3 * m * rows, 12 * rows);
+        spans.push_back({p + 3 * m * stride, static_cast<const float*>(s) + 3 * m * rows, 12 * rows});
+      copySpans(spans);
     };
     return {Wrapped{stage_->out(12 * materials * rows, deliver), 0}, rows};
   }

@@ -124,11 +124,11 @@ void Evaluator::sample(const std::vector<MaterialParams>& materials, const std::
       for (std::size_t first = 0; first < count; first += chunk) {
         const std::size_t n = std::min(chunk, count - first);
         st.begin();
-        const cl::Buffer& V = st.in(0, view + 3 * first, 12 * n);
-        const cl::Buffer& U = st.in(1, u + 3 * first, 12 * n);
-        const cl::Buffer& index = material ? st.in(2, material + first, 4 * n) : cl::Buffer();
+        const cl::Buffer V = st.in(0, view + 3 * first, 12 * n);
+        const cl::Buffer U = st.in(1, u + 3 * first, 12 * n);
+        const cl::Buffer index = material ? st.in(2, material + first, 4 * n) : cl::Buffer();
         float* to = out + 7 * first;
-        setArgs(V, index, U, n, st.out(28 * n, [to, n](const void* p) { std::memcpy(to, p, 28 * n); }));
+        setArgs(V, index, U, n, st.out(28 * n, [to, n](const void* p) { copySpans({{to, p, 28 * n}}); }));
         st.queue().enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(n), cl::NullRange);
         st.end();
       }
@@ -202,11 +202,11 @@ void Evaluator::pdf(const std::vector<MaterialParams>& materials, const Samples&
       for (std::size_t first = 0; first < count; first += chunk) {
         const std::size_t n = std::min(chunk, count - first);
         st.begin();
-        const cl::Buffer& L = st.in(0, samples.L.data() + 3 * first, 12 * n);
-        const cl::Buffer& V = st.in(1, samples.V.data() + 3 * first, 12 * n);
-        const cl::Buffer& index = material ? st.in(2, material + first, 4 * n) : cl::Buffer();
+        const cl::Buffer L = st.in(0, samples.L.data() + 3 * first, 12 * n);
+        const cl::Buffer V = st.in(1, samples.V.data() + 3 * first, 12 * n);
+        const cl::Buffer index = material ? st.in(2, material + first, 4 * n) : cl::Buffer();
         float* to = pdf + first;
-        setArgs(L, V, index, n, st.out(4 * n, [to, n](const void* p) { std::memcpy(to, p, 4 * n); }));
+        setArgs(L, V, index, n, st.out(4 * n, [to, n](const void* p) { copySpans({{to, p, 4 * n}}); }));
         st.queue().enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(n), cl::NullRange);
         st.end();
       }

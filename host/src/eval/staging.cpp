@@ -3,6 +3,7 @@
 // Runtime's pool.
 #include "eval/staging.hpp"
 
+#include <algorithm>
 #include <cstdlib>
 #include <cstring>
 #include <string>
@@ -10,6 +11,7 @@
 #include <vector>
 
 #include "brdfcl/error.hpp"
+#include "io/rows.hpp"
 
 namespace brdfcl {
 
@@ -21,6 +23,27 @@ bool stagesRows(const Runtime& rt) {
     throw Error("BRDFCL_STAGING=" + s + " is not supported; use 0 or 1");
   }
   return rt.info().type != "CPU";
+}
+
+void copySpans(const std::vector<CopySpan>& spans) {
+  std::size_t total = 0;
+  for (const auto& s : spans) total += s.bytes;
+  const std::size_t threads = std::min<std::size_t>(8, total < (std::size_t(4) << 20) ? 1 : detail::workerCount(total));
+  // Thread t copies bytes [t * total / threads, (t + 1) * total / threads) of the spans laid end to end.
+  const auto part = [&](std::size_t t) {
+    const std::size_t begin = t * total / threads, end = (t + 1) * total / threads;
+    std::size_t at = 0;
+    for (const auto& s : spans) {
+      const std::size_t lo = std::max(begin, at), hi = std::min(end, at + s.bytes);
+      if (lo < hi)
+        std::memcpy(static_cast<char*>(s.to) + (lo - at), static_cast<const char*>(s.from) + (lo - at), hi - lo);
+      at += s.bytes;
+    }
+  };
+  if (threads == 1)
+    part(0);
+  else
+    detail::parallelFor(threads, part);
 }
 
 namespace {
@@ -120,6 +143,7 @@ Staging::~Staging() {
 }
 
 void Staging::begin() {
+  pending_.clear();
   current_ = (current_ + 1) % 2;
   Slot& s = set_->slots[current_];
   if (s.done() != nullptr) {
@@ -130,7 +154,7 @@ void Staging::begin() {
   outBytes_ = 0;
 }
 
-const cl::Buffer& Staging::in(int k, const void* data, std::size_t bytes) {
+cl::Buffer Staging::in(int k, const void* data, std::size_t bytes) {
   Slot& s = set_->slots[current_];
   if (s.pinnedIn.size() <= std::size_t(k)) {
     s.pinnedIn.resize(std::size_t(k) + 1);
@@ -139,14 +163,18 @@ const cl::Buffer& Staging::in(int k, const void* data, std::size_t bytes) {
   const std::size_t size = std::max<std::size_t>(bytes, 4);
   reserve(cl_.context(), s.queue, s.pinnedIn[std::size_t(k)], size);
   reserve(cl_.context(), s.deviceIn[std::size_t(k)], size);
-  if (bytes == 0) return s.deviceIn[std::size_t(k)].buffer;
-  std::memcpy(s.pinnedIn[std::size_t(k)].host, data, bytes);
-  s.queue.enqueueWriteBuffer(s.deviceIn[std::size_t(k)].buffer, CL_FALSE, 0, bytes, s.pinnedIn[std::size_t(k)].host);
+  if (bytes) pending_.emplace_back(k, CopySpan{s.pinnedIn[std::size_t(k)].host, data, bytes});
   return s.deviceIn[std::size_t(k)].buffer;
 }
 
-const cl::Buffer& Staging::out(std::size_t bytes, std::function<void(const void*)> deliver) {
+cl::Buffer Staging::out(std::size_t bytes, std::function<void(const void*)> deliver) {
   Slot& s = set_->slots[current_];
+  std::vector<CopySpan> spans;
+  for (const auto& [k, span] : pending_) spans.push_back(span);
+  copySpans(spans);
+  for (const auto& [k, span] : pending_)
+    s.queue.enqueueWriteBuffer(s.deviceIn[std::size_t(k)].buffer, CL_FALSE, 0, span.bytes, span.to);
+  pending_.clear();
   const std::size_t size = std::max<std::size_t>(bytes, 4);
   reserve(cl_.context(), s.queue, s.pinnedOut, size);
   reserve(cl_.context(), s.deviceOut, size);
