@@ -23,6 +23,7 @@
 
 #include "brdfcl/albedo.hpp"
 #include "brdfcl/arrays.hpp"
+#include "brdfcl/device_array.hpp"
 #include "brdfcl/error.hpp"
 #include "brdfcl/evaluator.hpp"
 #include "brdfcl/gbuffer.hpp"
@@ -401,6 +402,13 @@ NB_MODULE(_core, m) {
            [](Device& d, const Materials& m, const InArray& L, const InArray& V, nb::object index, OutArray out,
               const brdfcl::EvalOptions& o) { evaluate(d, m, L, V, index, out, false, o); },
            "materials"_a, "L"_a.noconvert(), "V"_a.noconvert(), "index"_a.none(), "out"_a.noconvert(), "options"_a)
+      .def("evaluate_device",
+           [](Device& d, const Materials& m, const brdfcl::DeviceArray& L, const brdfcl::DeviceArray& V,
+              const brdfcl::DeviceArray* index, brdfcl::DeviceArray& out, bool normalize, const brdfcl::EvalOptions& o) {
+             nb::gil_scoped_release release;
+             d.evaluator(o).evaluate(m.list, L, V, index, out, normalize);
+           },
+           "materials"_a, "L"_a, "V"_a, "index"_a.none(), "out"_a, "normalize"_a, "options"_a)
       .def("evaluate_grid",
            [](Device& d, const Materials& m, const InArray& L, const InArray& V, OutArray out,
               const brdfcl::EvalOptions& o) { evaluate(d, m, L, V, nb::none(), out, true, o); },
@@ -476,6 +484,34 @@ NB_MODULE(_core, m) {
              return imageToNumpy(std::move(img));
            },
            "gbuffer"_a, "scene"_a, "profile"_a, "ibl"_a, "ibl_samples"_a);
+
+  // Arrays in the device's memory (brdfcl/device_array.hpp): the Python front keeps their shape
+  // and dtype; the array keeps its Device alive.
+  nb::class_<brdfcl::DeviceArray>(m, "DeviceArray")
+      .def("__init__",
+           [](brdfcl::DeviceArray* self, Device& d, bool uint32, std::size_t size) {
+             new (self) brdfcl::DeviceArray(d.runtime(), uint32 ? brdfcl::DeviceArray::Type::UInt32
+                                                                : brdfcl::DeviceArray::Type::Float32, size);
+           },
+           "device"_a, "uint32"_a, "size"_a, nb::keep_alive<1, 2>())
+      .def_prop_ro("size", &brdfcl::DeviceArray::size)
+      .def("upload",
+           [](brdfcl::DeviceArray& a, InArray host) {
+             if (host.itemsize() != 4) throw Error("internal: device arrays hold 4-byte elements", 3);
+             const std::size_t n = host.size();
+             const void* p = host.data();
+             nb::gil_scoped_release release;
+             a.upload(p, n);
+           },
+           "host"_a.noconvert())
+      .def("download",
+           [](const brdfcl::DeviceArray& a, nb::ndarray<nb::c_contig, nb::device::cpu> host) {
+             if (host.itemsize() != 4 || host.size() != a.size()) throw Error("internal: download into the wrong array", 3);
+             void* p = host.data();
+             nb::gil_scoped_release release;
+             a.download(p, a.size());
+           },
+           "host"_a.noconvert());
 
   nb::class_<brdfcl::RenderJob>(m, "RenderJob")
       .def(nb::init<>())
