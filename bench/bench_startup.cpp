@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "host/src/io/output.hpp"
 #include "tests/unit/process.hpp"
 
 namespace fs = std::filesystem;
@@ -46,6 +47,26 @@ void run(benchmark::State& state, const std::vector<std::string>& args, const st
 void warmRow(benchmark::State& state, const std::vector<std::string>& args) {
   run(state, args, scratch().warm);
   for (auto _ : state) run(state, args, scratch().warm);
+}
+
+// A warm `eval` of 1,024 samples from a float32 NPY: the latency floor of one CLI call.
+void BM_StartupEval1kWarm(benchmark::State& state) {
+  const std::string samples = scratch().dir.path("s1k.npy"), materials = scratch().dir.path("m1k.json");
+  {
+    std::ofstream m(materials);
+    m << R"({"materials": [{"pbrMetallicRoughness": {"roughnessFactor": 0.5}, "extensions": )"
+         R"({"KHR_materials_sheen": {"sheenColorFactor": [1, 1, 1], "sheenRoughnessFactor": 0.4}}}]})";
+    std::ofstream f(samples, std::ios::binary);
+    f << brdfcl::detail::npyHeader(1024, 7);
+    for (int i = 0; i < 1024; ++i) {
+      const float row[7] = {0, 0.6f, 0, 0.8f, 0, 0.6f * float(i % 7) / 7, 0.8f};
+      f.write(reinterpret_cast<const char*>(row), sizeof row);
+    }
+  }
+  int k = 0;
+  const auto args = [&] { return std::vector<std::string>{"eval", "--materials", materials, "--samples", samples, "--out", "e" + std::to_string(k++) + ".npy"}; };
+  run(state, args(), scratch().warm);
+  for (auto _ : state) run(state, args(), scratch().warm);
 }
 
 void BM_StartupRenderSpheres64Warm(benchmark::State& state) {
@@ -97,6 +118,7 @@ void BM_StartupFirstUseOf1kHdr(benchmark::State& state) {
 
 }  // namespace
 
+BENCHMARK(BM_StartupEval1kWarm)->Iterations(10)->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_StartupRenderSpheres64Warm)->Iterations(5)->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_StartupShade256Warm)->Iterations(5)->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_StartupRenderSpheres64Cold)->Iterations(3)->UseRealTime()->Unit(benchmark::kMillisecond);

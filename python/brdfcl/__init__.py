@@ -41,7 +41,7 @@ if TYPE_CHECKING:
     from . import plot as plot
 
 __all__ = [
-    "Error", "InputError", "DeviceError", "OutOfMemoryError", "InternalError", "BrdfclWarning", "Options", "Evaluator",
+    "Error", "InputError", "DeviceError", "OutOfMemoryError", "InternalError", "BrdfclWarning", "Options", "Evaluator", "DeviceArray",
     "devices", "evaluate", "evaluate_grid", "albedo", "lut", "sample", "pdf",
     "render", "shade", "read_gbuffer", "write_gbuffer", "read_exr", "LOBES", "PROFILES", "LUT_KINDS",
 ]
@@ -216,6 +216,37 @@ def _index(material_index: Any, n: int, count: int) -> Optional[np.ndarray]:
     return np.ascontiguousarray(idx, dtype=np.int64)
 
 
+class DeviceArray:
+    """An array kept in an Evaluator's device memory: float32 rows of shape (N, 3) (directions or
+    results) or uint32 material indices of shape (N,). Evaluator.to_device and
+    Evaluator.device_array make them; Evaluator.evaluate takes them for L, V, material_index and
+    out and returns its results as one, so chained calls keep their data on the device. numpy()
+    copies the array back to the host."""
+
+    __slots__ = ("_core", "shape", "dtype", "_evaluator")
+
+    def __init__(self, evaluator: "Evaluator", shape: Tuple[int, ...], dtype: Any):
+        dtype = np.dtype(dtype)
+        if dtype not in (np.dtype(np.float32), np.dtype(np.uint32)):
+            raise InputError(f"device arrays hold float32 or uint32, got dtype {dtype}")
+        self._core = _core.DeviceArray(evaluator._device, dtype == np.uint32, int(np.prod(shape, dtype=np.int64)))
+        self.shape = tuple(int(x) for x in shape)
+        self.dtype = dtype
+        self._evaluator = evaluator
+
+    def __len__(self) -> int:
+        return self.shape[0]
+
+    def __repr__(self) -> str:
+        return f"brdfcl.DeviceArray(shape={self.shape}, dtype={self.dtype.name})"
+
+    def numpy(self) -> np.ndarray:
+        """A fresh host copy of the array."""
+        out = np.empty(self.shape, dtype=self.dtype)
+        self._core.download(out)
+        return out
+
+
 class Evaluator:
     """One OpenCL device and the programs compiled for it (kept between calls).
 
@@ -241,11 +272,16 @@ class Evaluator:
     def evaluate(self, materials: MaterialsLike, L: Any, V: Any, material_index: Any = None, *,
                  options: Optional[Options] = None, lobe: Optional[str] = None, sheen_visibility: Optional[str] = None,
                  sheen_distribution: Optional[str] = None, sheen_scaling: Optional[str] = None,
-                 profile: Optional[str] = None, strict: bool = False, out: Optional[np.ndarray] = None) -> np.ndarray:
-        """f(L, V) per sample: float32 (N, 3) rgb in 1/sr, no cosine. See brdfcl.evaluate."""
+                 profile: Optional[str] = None, strict: bool = False, out: Any = None) -> Any:
+        """f(L, V) per sample: float32 (N, 3) rgb in 1/sr, no cosine. See brdfcl.evaluate.
+
+        With DeviceArrays for L and V (and material_index and out, if given), the rows stay in
+        device memory: the result is a DeviceArray, the same bytes as the numpy call's."""
         opts = _options(options, self.options, lobe=lobe, sheen_visibility=sheen_visibility,
                         sheen_distribution=sheen_distribution, sheen_scaling=sheen_scaling, profile=profile)._core
         m = _materials(materials, strict)
+        if any(isinstance(a, DeviceArray) for a in (L, V, material_index, out)):
+            return self._evaluate_device(m, L, V, material_index, out, opts)
         Ld, Vd = _directions(L, "L"), _directions(V, "V")
         if Ld.shape[0] != Vd.shape[0]:
             raise InputError(f"L and V must have the same number of rows, got {Ld.shape[0]} and {Vd.shape[0]}")
@@ -255,6 +291,59 @@ class Evaluator:
         out = _output(out, (Ld.shape[0], 3), Ld, Vd)
         self._device.evaluate(m, Ld, Vd, idx, out, opts)
         return out
+
+    def device_array(self, shape: Union[int, Tuple[int, ...]], dtype: Any = np.float32) -> DeviceArray:
+        """A zero-filled DeviceArray in this evaluator's device memory: float32 (N, 3) or uint32 (N,)."""
+        return DeviceArray(self, (shape,) if isinstance(shape, (int, np.integer)) else tuple(shape), dtype)
+
+    def to_device(self, a: Any) -> DeviceArray:
+        """A copy of `a` in this evaluator's device memory: (N, 3) directions as float32, or (N,)
+        material indices as uint32."""
+        arr = np.asarray(a)
+        if arr.ndim == 2 and arr.shape[1] == 3 and arr.dtype.kind in "fiu":
+            host = np.ascontiguousarray(arr, dtype=np.float32)
+        elif arr.ndim == 1 and arr.dtype.kind in "iu":
+            if arr.size and (arr.min() < 0 or arr.max() > np.iinfo(np.uint32).max):
+                row = int(np.argmax((arr < 0) | (arr > np.iinfo(np.uint32).max)))
+                raise InputError(f"row {row}: material index {int(arr[row])} does not fit a uint32")
+            host = np.ascontiguousarray(arr, dtype=np.uint32)
+        else:
+            raise InputError(f"to_device takes (N, 3) directions or (N,) integer material indices, got shape "
+                             f"{tuple(arr.shape)} and dtype {arr.dtype}")
+        d = DeviceArray(self, host.shape, host.dtype)
+        d._core.upload(host)
+        return d
+
+    def _device_rows(self, a: Any, name: str, dtype: Any, rows: Optional[int]) -> DeviceArray:
+        if not isinstance(a, DeviceArray):
+            raise InputError(f"{name} must be a brdfcl.DeviceArray when the other inputs are (see Evaluator.to_device), "
+                             f"got {type(a).__name__}")
+        if a._evaluator is not self:
+            raise InputError(f"{name} lives on another Evaluator's device; make it with this Evaluator's to_device")
+        shape = (a.shape[0], 3) if dtype == np.float32 else (a.shape[0],)
+        if a.dtype != dtype or a.shape != shape or (rows is not None and a.shape[0] != rows):
+            want = f"({rows if rows is not None else 'N'}{', 3' if dtype == np.float32 else ''})"
+            raise InputError(f"{name} must be a {np.dtype(dtype).name} device array of shape {want}, got "
+                             f"{a.dtype.name} {a.shape}")
+        return a
+
+    def _evaluate_device(self, m: "_core.Materials", L: Any, V: Any, material_index: Any, out: Any,
+                         opts: "_core.EvalOptions") -> DeviceArray:
+        Ld = self._device_rows(L, "L", np.float32, None)
+        n = Ld.shape[0]
+        Vd = self._device_rows(V, "V", np.float32, n)
+        if material_index is None:
+            if len(m) != 1:
+                raise InputError(f"{len(m)} materials but no material_index; give one index per sample "
+                                 "(a uint32 device array of shape (N,))")
+            idx = None
+        else:
+            idx = self._device_rows(material_index, "material_index", np.uint32, n)._core
+        o = self.device_array((n, 3)) if out is None else self._device_rows(out, "out", np.float32, n)
+        if o._core is Ld._core or o._core is Vd._core:
+            raise InputError("out must not be L or V; pass a separate device array")
+        self._device.evaluate_device(m, Ld._core, Vd._core, idx, o._core, True, opts)
+        return o
 
     def evaluate_grid(self, materials: MaterialsLike, L: Any, V: Any, *, options: Optional[Options] = None,
                       lobe: Optional[str] = None, sheen_visibility: Optional[str] = None,

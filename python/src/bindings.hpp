@@ -93,6 +93,7 @@ void bindRender(nb::module_& m, nb::class_<Device>& device);  // render.cpp: ren
 void bindGbuffer(nb::module_& m);                          // gbuffer.cpp
 void bindImages(nb::module_& m);                           // images.cpp: EXR, tone map, image diff
 void bindScene(nb::module_& m);                            // render.cpp
+void bindDeviceArrays(nb::module_& m);                     // device_array.cpp
 void bindSample(nb::module_& m);                           // sample.cpp: sample, pdf, uniforms
 
 }  // namespace brdfcl_python

@@ -13,6 +13,7 @@
 #include "bindings.hpp"
 #include "brdfcl/albedo.hpp"
 #include "brdfcl/arrays.hpp"
+#include "brdfcl/device_array.hpp"
 #include "brdfcl/error.hpp"
 #include "brdfcl/lut.hpp"
 #include "host/src/model/pack.hpp"
@@ -82,6 +83,13 @@ void bindEval(nb::class_<Device>& device) {
            [](Device& d, const Materials& m, const InArray& L, const InArray& V, nb::object index, OutArray out,
               const brdfcl::EvalOptions& o) { evaluate(d, m, L, V, index, out, false, o); },
            "materials"_a, "L"_a.noconvert(), "V"_a.noconvert(), "index"_a.none(), "out"_a.noconvert(), "options"_a)
+      .def("evaluate_device",
+           [](Device& d, const Materials& m, const brdfcl::DeviceArray& L, const brdfcl::DeviceArray& V,
+              const brdfcl::DeviceArray* index, brdfcl::DeviceArray& out, bool normalize, const brdfcl::EvalOptions& o) {
+             nb::gil_scoped_release release;
+             d.evaluator(o).evaluate(m.list, L, V, index, out, normalize);
+           },
+           "materials"_a, "L"_a, "V"_a, "index"_a.none(), "out"_a, "normalize"_a, "options"_a)
       .def("evaluate_grid",
            [](Device& d, const Materials& m, const InArray& L, const InArray& V, OutArray out,
               const brdfcl::EvalOptions& o) { evaluate(d, m, L, V, nb::none(), out, true, o); },

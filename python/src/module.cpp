@@ -21,4 +21,5 @@ NB_MODULE(_core, m) {
   brdfcl_python::bindImages(m);
   brdfcl_python::bindScene(m);
   brdfcl_python::bindSample(m);
+  brdfcl_python::bindDeviceArrays(m);
 }

@@ -7,6 +7,7 @@
 #include <mutex>
 #include <vector>
 
+#include "brdfcl/device_array.hpp"
 #include "brdfcl/io.hpp"
 #include "brdfcl/material.hpp"
 #include "brdfcl/runtime.hpp"
@@ -114,6 +115,17 @@ class Evaluator {
   // (the indices are ignored): material k's row i at rgb + 3 * ((k - firstMaterial) * rows.count + i).
   std::size_t evaluateGridRows(const std::vector<MaterialParams>& materials, const Rows& rows, float* rgb,
                                bool normalize, std::size_t firstMaterial, std::size_t materialCount);
+
+  // evaluate() on rows that stay in device memory (brdfcl/device_array.hpp), for chained work:
+  // L and V float32, 3 a row (unit vectors, or normalized on the device with `normalize`);
+  // `material` uint32, one index a row (nullptr: material 0); rgb float32, 3 a row, written on the
+  // device and left there. Only a bad row crosses the bus, read back to word the error as
+  // evaluate() does ("sample 7: Vz is not finite: inf", "sample 7: material index 5 out of range
+  // (2 materials)", "sample 7: L is zero"). Every array must belong to this evaluator's Runtime
+  // ("device array L belongs to another Runtime; create it on the evaluator's Runtime") and have
+  // the type and size of its part.
+  void evaluate(const std::vector<MaterialParams>& materials, const DeviceArray& L, const DeviceArray& V,
+                const DeviceArray* material, DeviceArray& rgb, bool normalize = false);
 
   // The table this evaluator's sheen options use (baked on first use).
   const SheenAlbedoTable& sheenAlbedo();

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <string>
 #include <vector>
 
@@ -13,6 +14,7 @@
 #include "eval/batch.hpp"
 #include "eval/sample_batch.hpp"
 #include "eval/splitmix64.hpp"
+#include "eval/staging.hpp"
 #include "model/pack.hpp"
 #include "runtime/opencl.hpp"
 
@@ -95,16 +97,13 @@ void Evaluator::sample(const std::vector<MaterialParams>& materials, const std::
   const FeatureSet features = featuresOf(materials, options_.profile);
   const SamplingBatch s = makeSamplingBatch(rt_, options_, materials, b.packed, b.table, b.tableSize,
                                             features.sheen || features.draft ? &sheenAlbedo() : nullptr);
-  const std::size_t chunk = std::max<std::size_t>(1, std::min(launchLimit(), std::size_t(rt_.info().maxAlloc) / 28));
+  const bool staged = stagesRows(rt_);
+  const std::size_t chunk = std::max<std::size_t>(
+      1, std::min({launchLimit(), std::size_t(rt_.info().maxAlloc) / 28, staged ? kStagedRows : SIZE_MAX}));
   try {
     cl::Kernel kernel(s.program, "sample_rows");
-    auto& q = rt_.opencl().queue();
-    const auto& ctx = rt_.opencl().context();
-    for (std::size_t first = 0; first < count; first += chunk) {
-      const std::size_t n = std::min(chunk, count - first);
-      cl::Buffer V = input(ctx, view + 3 * first, 3 * n), U = input(ctx, u + 3 * first, 3 * n);
-      cl::Buffer index = input(ctx, material ? material + first : nullptr, material ? n : 0);
-      cl::Buffer result(ctx, CL_MEM_WRITE_ONLY, 28 * n);
+    const auto setArgs = [&](const cl::Buffer& V, const cl::Buffer& index, const cl::Buffer& U, std::size_t n,
+                             const cl::Buffer& result) {
       int arg = 0;
       kernel.setArg(arg++, V);
       if (material)
@@ -119,6 +118,32 @@ void Evaluator::sample(const std::vector<MaterialParams>& materials, const std::
       kernel.setArg(arg++, s.albedo);
       kernel.setArg(arg++, s.albedoSize);
       kernel.setArg(arg++, result);
+    };
+    if (staged) {
+      // Pinned, double-buffered copies (eval/staging.hpp): one chunk's copies overlap the other's launch.
+      Staging st(rt_);
+      for (std::size_t first = 0; first < count; first += chunk) {
+        const std::size_t n = std::min(chunk, count - first);
+        st.begin();
+        const cl::Buffer V = st.in(0, view + 3 * first, 12 * n);
+        const cl::Buffer U = st.in(1, u + 3 * first, 12 * n);
+        const cl::Buffer index = material ? st.in(2, material + first, 4 * n) : cl::Buffer();
+        float* to = out + 7 * first;
+        setArgs(V, index, U, n, st.out(28 * n, [to, n](const void* p) { copySpans({{to, p, 28 * n}}); }));
+        st.queue().enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(n), cl::NullRange);
+        st.end();
+      }
+      st.drain();
+      return;
+    }
+    auto& q = rt_.opencl().queue();
+    const auto& ctx = rt_.opencl().context();
+    for (std::size_t first = 0; first < count; first += chunk) {
+      const std::size_t n = std::min(chunk, count - first);
+      cl::Buffer V = input(ctx, view + 3 * first, 3 * n), U = input(ctx, u + 3 * first, 3 * n);
+      cl::Buffer index = input(ctx, material ? material + first : nullptr, material ? n : 0);
+      cl::Buffer result(ctx, CL_MEM_WRITE_ONLY, 28 * n);
+      setArgs(V, index, U, n, result);
       q.enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(n), cl::NullRange);
       q.enqueueReadBuffer(result, CL_TRUE, 0, 28 * n, out + 7 * first);
     }
@@ -153,16 +178,13 @@ void Evaluator::pdf(const std::vector<MaterialParams>& materials, const Samples&
   const FeatureSet features = featuresOf(materials, options_.profile);
   const SamplingBatch s = makeSamplingBatch(rt_, options_, materials, b.packed, b.table, b.tableSize,
                                             features.sheen || features.draft ? &sheenAlbedo() : nullptr);
-  const std::size_t chunk = std::max<std::size_t>(1, std::min(launchLimit(), std::size_t(rt_.info().maxAlloc) / 12));
+  const bool staged = stagesRows(rt_);
+  const std::size_t chunk = std::max<std::size_t>(
+      1, std::min({launchLimit(), std::size_t(rt_.info().maxAlloc) / 12, staged ? kStagedRows : SIZE_MAX}));
   try {
     cl::Kernel kernel(s.program, "pdf_rows");
-    auto& q = rt_.opencl().queue();
-    const auto& ctx = rt_.opencl().context();
-    for (std::size_t first = 0; first < count; first += chunk) {
-      const std::size_t n = std::min(chunk, count - first);
-      cl::Buffer L = input(ctx, samples.L.data() + 3 * first, 3 * n), V = input(ctx, samples.V.data() + 3 * first, 3 * n);
-      cl::Buffer index = input(ctx, material ? material + first : nullptr, material ? n : 0);
-      cl::Buffer result(ctx, CL_MEM_WRITE_ONLY, 4 * n);
+    const auto setArgs = [&](const cl::Buffer& L, const cl::Buffer& V, const cl::Buffer& index, std::size_t n,
+                             const cl::Buffer& result) {
       int arg = 0;
       kernel.setArg(arg++, L);
       kernel.setArg(arg++, V);
@@ -175,6 +197,31 @@ void Evaluator::pdf(const std::vector<MaterialParams>& materials, const Samples&
       kernel.setArg(arg++, s.albedo);
       kernel.setArg(arg++, s.albedoSize);
       kernel.setArg(arg++, result);
+    };
+    if (staged) {
+      Staging st(rt_);
+      for (std::size_t first = 0; first < count; first += chunk) {
+        const std::size_t n = std::min(chunk, count - first);
+        st.begin();
+        const cl::Buffer L = st.in(0, samples.L.data() + 3 * first, 12 * n);
+        const cl::Buffer V = st.in(1, samples.V.data() + 3 * first, 12 * n);
+        const cl::Buffer index = material ? st.in(2, material + first, 4 * n) : cl::Buffer();
+        float* to = pdf + first;
+        setArgs(L, V, index, n, st.out(4 * n, [to, n](const void* p) { copySpans({{to, p, 4 * n}}); }));
+        st.queue().enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(n), cl::NullRange);
+        st.end();
+      }
+      st.drain();
+      return;
+    }
+    auto& q = rt_.opencl().queue();
+    const auto& ctx = rt_.opencl().context();
+    for (std::size_t first = 0; first < count; first += chunk) {
+      const std::size_t n = std::min(chunk, count - first);
+      cl::Buffer L = input(ctx, samples.L.data() + 3 * first, 3 * n), V = input(ctx, samples.V.data() + 3 * first, 3 * n);
+      cl::Buffer index = input(ctx, material ? material + first : nullptr, material ? n : 0);
+      cl::Buffer result(ctx, CL_MEM_WRITE_ONLY, 4 * n);
+      setArgs(L, V, index, n, result);
       q.enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(n), cl::NullRange);
       q.enqueueReadBuffer(result, CL_TRUE, 0, 4 * n, pdf + first);
     }

@@ -284,7 +284,12 @@ std::optional<std::string> readEntry(const Folder& f, const std::string& name, s
   const auto now = std::chrono::system_clock::now().time_since_epoch();
   const auto marked = std::chrono::seconds(st.st_mtim.tv_sec);
   if (now - marked > kUseMarkInterval) ::futimens(fd, nullptr);
-  return std::string(*payload);
+  // The payload moved to the front of the pages already read, rather than copied into fresh ones
+  // (a program binary is megabytes: each copy costs its page faults at start-up).
+  const std::size_t at = std::size_t(payload->data() - bytes.data()), n = payload->size();
+  bytes.erase(0, at);
+  bytes.resize(n);
+  return bytes;
 }
 
 struct Listed {
@@ -489,6 +494,13 @@ std::vector<unsigned char> loadCachedBytes(const std::string& name) {
   const auto payload = readEntry(*folder, name, 1, kMaxBytesPayload);
   if (!payload) return {};
   return std::vector<unsigned char>(payload->begin(), payload->end());
+}
+
+std::string loadCachedPayload(const std::string& name) {
+  const auto folder = usableFolder(false);
+  if (!folder) return {};
+  auto payload = readEntry(*folder, name, 1, kMaxBytesPayload);
+  return payload ? std::move(*payload) : std::string();
 }
 
 void storeCachedBytes(const std::string& name, const std::vector<unsigned char>& bytes) {

@@ -46,6 +46,8 @@ std::optional<std::string_view> parseCacheEntry(std::string_view bytes, std::str
 // to now when older than kUseMarkInterval), for pruning.
 constexpr std::chrono::hours kUseMarkInterval{1};
 std::vector<unsigned char> loadCachedBytes(const std::string& name);
+// The same payload as a string, read once and never copied (program binaries at start-up).
+std::string loadCachedPayload(const std::string& name);
 // Stores `bytes` as `name`; as storeCachedFloats, a failure costs a warning and a recompute.
 void storeCachedBytes(const std::string& name, const std::vector<unsigned char>& bytes);
 // Keeps the `keep` most recently used entries whose names start with `prefix`, removing the rest.

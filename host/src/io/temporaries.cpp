@@ -27,9 +27,11 @@ namespace {
 // unlinks only state-2 paths, which are complete strings.
 constexpr int kSlots = 256;
 constexpr std::size_t kPathMax = 4096;
+// Every member initialized, so the array is constant-initialized (zero pages of .bss) rather than
+// written slot by slot before main: 256 page faults off every process start.
 struct Slot {
   std::atomic<int> state{0};
-  char path[kPathMax];
+  char path[kPathMax] = {};
 };
 Slot slots[kSlots];
 static_assert(std::atomic<int>::is_always_lock_free, "the signal handler reads the slot states");

@@ -18,6 +18,8 @@
 
 namespace brdfcl {
 
+struct StagingSet;  // eval/staging.cpp
+
 // Name of an OpenCL error code, e.g. "CL_OUT_OF_RESOURCES".
 const char* clErrorName(int code);
 
@@ -54,6 +56,10 @@ struct Runtime::OpenCL {
   std::mutex cacheMutex_;
   std::map<std::pair<std::string, std::string>, cl::Program> cache_;  // (options, source) -> program
   std::atomic<std::size_t> fromDisk_{0};
+  // Idle pinned staging of the row paths (eval/staging.hpp), kept for the next call. Declared
+  // last, so it goes before the queue and context its buffers belong to.
+  std::mutex stagingMutex_;
+  std::vector<std::shared_ptr<StagingSet>> staging_;
 };
 
 // How the batch kernels (eval.cl) lay work on a device: samples per work-item (BRDFCL_W) and

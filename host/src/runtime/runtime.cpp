@@ -255,9 +255,16 @@ cl::Program Runtime::OpenCL::program(const std::string& kernelFile, const std::s
                                                       device_.getInfo<CL_DEVICE_VERSION>() + '\n' +
                                                       device_.getInfo<CL_DRIVER_VERSION>())));
   cl::Program program;
-  if (auto binary = detail::loadCachedBytes(binaryName); !binary.empty()) {
+  if (const std::string binary = detail::loadCachedPayload(binaryName); !binary.empty()) {
     try {
-      program = cl::Program(context_, std::vector<cl::Device>{device_}, cl::Program::Binaries{std::move(binary)});
+      // The C call takes the bytes where they were read (cl::Program::Binaries would copy them).
+      const std::size_t size = binary.size();
+      const auto* bytes = reinterpret_cast<const unsigned char*>(binary.data());
+      cl_device_id device = device_();
+      cl_int status = CL_SUCCESS, error = CL_SUCCESS;
+      cl_program raw = clCreateProgramWithBinary(context_(), 1, &device, &size, &bytes, &status, &error);
+      if (error != CL_SUCCESS) throw cl::Error(error, "clCreateProgramWithBinary");
+      program = cl::Program(raw);
       program.build(std::vector<cl::Device>{device_}, options.c_str());
       ++fromDisk_;
     } catch (const cl::Error&) {
