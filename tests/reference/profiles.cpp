@@ -542,7 +542,9 @@ Lobes babylon(const Mat& q, const Geometry& g) {
   double sh = 1.0, sheenDV = 0.0;
   if (q.sheen) {
     const double alphaGS = q.rs * q.rs + 0.0005;
-    sheenDV = D_CharlieS(alphaGS, 1.0 - g.NdotH * g.NdotH) * V_Neubelt(g.NdotL, g.NdotV);
+    // normalDistributionFunction_CharlieSheen's sin^2 = 1 - NdotH^2, in the engine's float.
+    const float nhF = static_cast<float>(g.NdotH);
+    sheenDV = D_CharlieS(alphaGS, 1.0f - nhF * nhF) * V_Neubelt(g.NdotL, g.NdotV);
     sh = 1.0 - q.maxC * babylonBrdf(g.NdotV, q.rs)[2];  // .b, view only, raw r_s
   }
 
@@ -604,7 +606,9 @@ Lobes materialx(const Mat& q, const Geometry& g) {
   double ts = 1.0, sheenDV = 0.0;
   if (q.sheen && q.maxC >= epsF) {
     const double alphaS = q.rs * q.rs;
-    sheenDV = D_CharlieS(std::max(alphaS, 0.005), 1.0 - g.NdotH * g.NdotH) * V_Neubelt(g.NdotL, g.NdotV);
+    // mx_imageworks_sheen_NDF's sin^2 = 1 - NdotH^2, in the engine's float.
+    const float nhF = static_cast<float>(g.NdotH);
+    sheenDV = D_CharlieS(std::max(alphaS, 0.005), 1.0f - nhF * nhF) * V_Neubelt(g.NdotL, g.NdotV);
     ts = 1.0 - q.maxC * mxSheenAlbedo(g.NdotV, alphaS);  // view only, unfloored alpha
   }
 

@@ -1,7 +1,8 @@
 /* --profile babylon: Babylon.js PBRMaterial with the defines its glTF loader leaves set
    (docs/profiles.md "babylon"): LEGACY_SPECULAR_ENERGY_CONSERVATION, BASE_DIFFUSE_MODEL EON at
    diffuse roughness 0, MS_BRDF_ENERGY_CONSERVATION on the specular and the coat, alpha + 0.0005
-   on every lobe, Ashikhmin sheen with view-only scaling, Kelemen coat with F on V.H. */
+   on every lobe, Ashikhmin sheen with view-only scaling and its D on the engine's float
+   1 - N.H^2, Kelemen coat with F on V.H. */
 #ifndef BRDFCL_PROFILE_BABYLON_H
 #define BRDFCL_PROFILE_BABYLON_H
 
@@ -36,7 +37,7 @@ BRDF_FN rgbw brdf_profile(const material_lanes m, vec3w L, vec3w V, vec3w Lc, ve
   rgbw sheen = rgbw_splat(0.0f);
 #if BRDFCL_HAS_SHEEN
   {
-    sheen = sheen_coloured(m, D_Charlie(g.sin2, g.cos2, m.sheen_alpha) * V_Ashikhmin(g.NdotL, g.NdotV));
+    sheen = sheen_coloured(m, D_CharlieOneMinusCos2(g.hz, m.sheen_alpha) * V_Ashikhmin(g.NdotL, g.NdotV));
     /* SHEEN_ALBEDOSCALING: the texture's .b at (N.V, sheen roughness), view only. */
     realw sh = 1.0f - m.sheen_max * BRDF_Babylon(lut, g.NdotV, m.sheen_roughness, 2);
     scale_base(&diffuse, &specular, sh);

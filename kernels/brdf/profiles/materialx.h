@@ -1,7 +1,7 @@
 /* --profile materialx: MaterialX gltf_pbr (1.39, nodedef 2.0.1, 4177b2cb), docs/profiles.md
    "materialx": layers by directional-albedo throughput, GGX energy compensation from the analytic
    albedo fit tinted by the average Fresnel, isotropic Smith on sqrt(alpha_t alpha_b), exact
-   dielectric Fresnel on the coat. */
+   dielectric Fresnel on the coat, sheen D on the engine's float 1 - N.H^2. */
 #ifndef BRDFCL_PROFILE_MATERIALX_H
 #define BRDFCL_PROFILE_MATERIALX_H
 
@@ -46,7 +46,7 @@ BRDF_FN rgbw brdf_profile(const material_lanes m, vec3w L, vec3w V, vec3w Lc, ve
   {
     /* mx_sheen_bsdf returns at once for a weight max3(c) below M_FLOAT_EPS: no response, throughput 1. */
     intw on = m.sheen_max >= 1e-8f;
-    realw dv = D_Charlie(g.sin2, g.cos2, max(m.sheen_alpha, 0.005f)) * V_Ashikhmin(g.NdotL, g.NdotV);
+    realw dv = D_CharlieOneMinusCos2(g.hz, max(m.sheen_alpha, 0.005f)) * V_Ashikhmin(g.NdotL, g.NdotV);
     sheen = sheen_coloured(m, select((realw)(0.0f), dv, on));
     realw t_s = select((realw)(1.0f), 1.0f - m.sheen_max * E_SheenMaterialX(g.NdotV, m.sheen_alpha), on);
     scale_base(&diffuse, &specular, t_s);
