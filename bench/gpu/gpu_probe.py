@@ -67,9 +67,15 @@ def count(paths):
     """Per file: PTX operation counts, then ptxas's resource report and SASS counts of the cubin."""
     ptxas = os.environ.get("PTXAS", "ptxas")
     for p in paths:
-        text = open(p, errors="replace").read()
+        raw = open(p, "rb").read()
+        # brdfcl's disk cache puts a header before the binary, and NVIDIA's PTX ends in NULs.
+        start = raw.find(b"//\n// Generated")
+        raw = (raw[start:] if start > 0 else raw).rstrip(b"\0")
+        text = raw.decode("latin-1")
         if ".entry" not in text:
             continue
+        with open(p, "wb") as f:
+            f.write(raw)
         entries = re.findall(r"\.entry\s+(\w+)", text)
         ops = {o: text.count(o) for o in PTX_OPS}
         print(f"== {os.path.basename(p)}: entries {entries}")
