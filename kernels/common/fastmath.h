@@ -9,6 +9,15 @@
 
 #include "common/lanes.h"
 
+#if BRDFCL_NATIVE_MATH
+/* GPUs (Runtime's Arithmetic::Batch): the special-function unit's exp2, log2 and rsqrt, one
+   instruction each (NVIDIA: ex2.approx, lg2.approx, rsqrt.approx, within 2 ulp, log2 within
+   2^-22 absolute) where the polynomials below take twenty. log1p keeps its polynomial: a hardware
+   log of 1 + u would lose u's low bits, which the Charlie lobe needs near N.H = 1. */
+BRDF_FN realw brdf_exp2(realw y) { return native_exp2(y); }
+BRDF_FN realw brdf_log2(realw x) { return native_log2(x); }
+BRDF_FN realw brdf_rsqrt(realw x) { return native_rsqrt(x); }
+#else
 /* 2^y: y = n + f with |f| <= 1/2, 2^f by its degree-7 Taylor series in f ln2 (truncation
    5e-9), 2^n by building the exponent bits. Below -126 the result flushes to 0, as the BRDF's
    factors underflow there anyway; above 127 it saturates at 2^127-ish (never reached). */
@@ -22,6 +31,8 @@ BRDF_FN realw brdf_exp2(realw y) {
   return select(p * scale, (realw)(0.0f), y < -126.0f);
 }
 
+#endif
+
 BRDF_FN realw brdf_exp(realw x) { return brdf_exp2(x * 1.44269504089f); }
 
 /* ln(1 + f) / f on the reduced range f in [sqrt(1/2) - 1, sqrt(2) - 1]: a degree-9 polynomial,
@@ -34,6 +45,7 @@ BRDF_FN realw brdf_ln1p_reduced(realw f) {
          f * (1.290474683e-01f + f * -7.621168345e-02f)))))))));
 }
 
+#if !BRDFCL_NATIVE_MATH
 /* log2(1 + f) on the same range: the same fit for log2 (the coefficients above times log2 e,
    refitted), so that log2 near 1 keeps its relative accuracy without a rounded scaling. */
 BRDF_FN realw brdf_log2_1p_reduced(realw f) {
@@ -55,6 +67,8 @@ BRDF_FN realw brdf_log2(realw x) {
   return select(r, (realw)(-INFINITY), x < 1.17549435e-38f);
 }
 
+#endif
+
 /* log(1 + u) for u >= 0 without a division: w = 1 + u rounded gives the exponent e (with
    m in [sqrt(1/2), sqrt(2))), and f = (1 + u) 2^-e - 1 is formed from u itself, u 2^-e + (2^-e - 1):
    the scaling is exact and the sum rounds once, so the rounding of w is not inherited (exact for
@@ -74,6 +88,7 @@ BRDF_FN realw brdf_log1p(realw u) {
   return select(r, u, isinf(u));
 }
 
+#if !BRDFCL_NATIVE_MATH
 /* 1/sqrt(x) for normal x > 0 without a square root or a division: the classic bit-pattern
    estimate (Lomont 2003's constant, relative error <= 1.8e-3) and three Newton steps, which leave
    float's rounding (2.2 ulp at most without fma). rsqrt() itself is a sqrt and a correctly rounded division where the
@@ -85,5 +100,6 @@ BRDF_FN realw brdf_rsqrt(realw x) {
   y = y * (1.5f - hx * y * y);
   return y * (1.5f - hx * y * y);
 }
+#endif
 
 #endif

@@ -116,6 +116,31 @@ BRDF_FN void table_load_partial(__global const float* p, uint n, realw* material
   table_load_private(tmp, material, L, V);
 }
 
+/* The normalization's root and quotients, correctly rounded as the host's are. Built without
+   -cl-fp32-correctly-rounded-divide-sqrt (BRDFCL_ROWS_FP64, a GPU with doubles), they are taken
+   in double and rounded once to float: for sqrt and division that is the correctly rounded float
+   result, since 53 >= 2 * 24 + 2 bits (Figueroa, "When is double rounding innocuous?", 1995).
+   For that very reason a compiler may turn (float)((double)a / (double)b) back into a float
+   division, which without the flag is approximate (NVIDIA's did): both operands are doubled
+   first, exactly, so that neither is a widened float any more. */
+#if BRDFCL_ROWS_FP64
+#pragma OPENCL EXTENSION cl_khr_fp64 : enable
+#if BRDFCL_W == 1
+#define ROWS_DOUBLE(x) ((double)(x))
+#elif BRDFCL_W == 4
+#define ROWS_DOUBLE convert_double4
+#elif BRDFCL_W == 8
+#define ROWS_DOUBLE convert_double8
+#else
+#define ROWS_DOUBLE convert_double16
+#endif
+#define ROWS_SQRT(s) CONVERT_REALW(sqrt(ROWS_DOUBLE(s)))
+#define ROWS_DIV(a, b) CONVERT_REALW((ROWS_DOUBLE(a) * 2.0) / (ROWS_DOUBLE(b) * 2.0))
+#else
+#define ROWS_SQRT(s) sqrt(s)
+#define ROWS_DIV(a, b) ((a) / (b))
+#endif
+
 /* Normalizes d in place exactly as the samples readers do (host/src/io/directions.cpp,
    normalizeDirection): x / sqrt((x*x + y*y) + z*z), every operation rounded to float (no
    contraction), and a vector whose squared length leaves [2^-96, 2^96] first scaled by 2^-e,
@@ -138,10 +163,10 @@ BRDF_FN intw rows_normalize(vec3w* d) {
     z = select(z, ldexp(z, -e), scaled);
     s = (x * x + y * y) + z * z;
   }
-  realw len = sqrt(s);
-  d->x = x / len;
-  d->y = y / len;
-  d->z = z / len;
+  realw len = ROWS_SQRT(s);
+  d->x = ROWS_DIV(x, len);
+  d->y = ROWS_DIV(y, len);
+  d->z = ROWS_DIV(z, len);
   return bad;
 }
 

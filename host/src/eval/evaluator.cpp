@@ -185,7 +185,8 @@ Evaluator::Batch Evaluator::prepare(const std::vector<MaterialParams>& materials
   try {
     // One material: every lane reads the same record (no gathers); indices are still checked.
     b.program = rt_.opencl().program("eval.cl", materialDefines(options_, features) + fmt::format(" -DBRDFCL_W={}", b.shape.lanes) +
-                                           (materials.size() == 1 ? " -DBRDFCL_ONE_MATERIAL=1" : ""));
+                                           (materials.size() == 1 ? " -DBRDFCL_ONE_MATERIAL=1" : ""),
+                                       Runtime::OpenCL::Arithmetic::Batch);
     const auto& ctx = rt_.opencl().context();
     b.materials = cl::Buffer(ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, b.packed.size() * sizeof(brdfcl_material),
                              b.packed.data());

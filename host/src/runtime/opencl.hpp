@@ -43,9 +43,22 @@ struct Runtime::OpenCL {
   const cl::Context& context() const { return context_; }
   cl::CommandQueue& queue() { return queue_; }
 
+  // The arithmetic a program is built for. Exact: correctly rounded float division and sqrt
+  // where the device offers them (every kernel but the batch kernels). Batch (eval.cl): on a GPU,
+  // the device's own division and sqrt and its special-function unit's exp2, log2 and rsqrt
+  // (fastmath.h, BRDFCL_NATIVE_MATH), several times cheaper on NVIDIA than the correctly rounded
+  // ones and the polynomials; only the row kernels' direction normalization (rows.h) must match
+  // the host readers to the bit, and on a GPU with doubles it is done in double
+  // (BRDFCL_ROWS_FP64). CPUs build Batch as Exact: their division is correctly rounded anyway.
+  enum class Arithmetic { Exact, Batch };
   // Builds (or returns from the cache) the program for an embedded kernel file, e.g. "eval.cl",
   // with its #include "..." lines resolved from kernels/. `defines` are extra -D options.
-  cl::Program program(const std::string& kernelFile, const std::string& defines = "");
+  cl::Program program(const std::string& kernelFile, const std::string& defines = "",
+                      Arithmetic arithmetic = Arithmetic::Exact);
+  // The build options program() adds for `arithmetic` on this device. BRDFCL_BATCH_MATH=exact|fast
+  // builds Batch as Exact or as on a GPU whatever the device, for tests and tuning, and
+  // BRDFCL_BUILD_OPTIONS is appended to every program's options, for tuning.
+  std::string mathOptions(Arithmetic arithmetic) const;
 
   cl::Device device_;
   cl::Context context_;
@@ -53,6 +66,7 @@ struct Runtime::OpenCL {
   DeviceInfo info_;
   std::string clStd_;
   std::string mathOptions_;  // -cl-fp32-correctly-rounded-divide-sqrt where the device offers it
+  bool fp64_ = false;  // the device has doubles (cl_khr_fp64)
   std::mutex cacheMutex_;
   std::map<std::pair<std::string, std::string>, cl::Program> cache_;  // (options, source) -> program
   std::atomic<std::size_t> fromDisk_{0};

@@ -220,9 +220,11 @@ Runtime::OpenCL::OpenCL(const std::string& selectorArg) {
     clStd_ = pickStd(info_.openclC);
     // OpenCL lets single-precision division be off by 2.5 ulp and sqrt by 3 (NVIDIA's are). The
     // row kernels normalize directions exactly as the host's readers do, to the bit, and every
-    // result is then the same on any device that rounds these correctly; ask for it where offered.
+    // result is then the same on any device that rounds these correctly; ask for it where offered,
+    // except in the batch kernels on a GPU (mathOptions, Arithmetic::Batch).
     if (device_.getInfo<CL_DEVICE_SINGLE_FP_CONFIG>() & CL_FP_CORRECTLY_ROUNDED_DIVIDE_SQRT)
       mathOptions_ = " -cl-fp32-correctly-rounded-divide-sqrt";
+    fp64_ = device_.getInfo<CL_DEVICE_DOUBLE_FP_CONFIG>() != 0;
     context_ = cl::Context(device_);
     // Profiling costs nothing measurable on PoCL or NVIDIA, and lets the bench time the kernel
     // alone on devices whose result has to travel back to the host (SoaBatch::lastKernelSeconds).
@@ -237,11 +239,26 @@ namespace {
 constexpr std::size_t kCachedPrograms = 256;
 }  // namespace
 
-cl::Program Runtime::OpenCL::program(const std::string& kernelFile, const std::string& defines) {
+std::string Runtime::OpenCL::mathOptions(Arithmetic arithmetic) const {
+  std::string extra;
+  if (const char* e = std::getenv("BRDFCL_BUILD_OPTIONS"); e && *e) extra = std::string(" ") + e;
+  bool fast = info_.type != "CPU";
+  if (const char* e = std::getenv("BRDFCL_BATCH_MATH")) {
+    const std::string v = e;
+    if (v != "exact" && v != "fast")
+      throw Error(fmt::format("BRDFCL_BATCH_MATH={} is not supported; use exact or fast", v));
+    fast = v == "fast";
+  }
+  if (arithmetic == Arithmetic::Exact || !fast) return mathOptions_ + extra;
+  return (fp64_ ? std::string(" -DBRDFCL_ROWS_FP64=1") : mathOptions_) + " -DBRDFCL_NATIVE_MATH=1" + extra;
+}
+
+cl::Program Runtime::OpenCL::program(const std::string& kernelFile, const std::string& defines,
+                                     Arithmetic arithmetic) {
   std::string source = kernelSource(kernelFile);
   // -w: PoCL prints clang warnings (e.g. the float16 ABI note on AVX2) to stderr; real
   // problems are errors and reach the user through the build log.
-  std::string options = clStd_ + mathOptions_ + " -w " + defines;
+  std::string options = clStd_ + mathOptions(arithmetic) + " -w " + defines;
   std::lock_guard<std::mutex> lock(cacheMutex_);
   auto key = std::make_pair(options, source);
   if (auto it = cache_.find(key); it != cache_.end()) return it->second;
