@@ -44,6 +44,11 @@ struct Runtime::OpenCL {
   // Builds (or returns from the cache) the program for an embedded kernel file, e.g. "eval.cl",
   // with its #include "..." lines resolved from kernels/. `defines` are extra -D options.
   cl::Program program(const std::string& kernelFile, const std::string& defines = "");
+  // The same for a caller's own source text (a test's probe kernel, say), its #include "..."
+  // lines resolved from the embedded kernels/ as program() does; `tag` names it in build errors.
+  cl::Program programFromSource(const std::string& tag, const std::string& source, const std::string& defines = "");
+  // Builds (or returns from the memory or disk cache) a source whose includes are expanded.
+  cl::Program buildExpanded(const std::string& tag, const std::string& source, const std::string& defines);
 
   cl::Device device_;
   cl::Context context_;
