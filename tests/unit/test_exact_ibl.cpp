@@ -21,6 +21,7 @@
 #include "furnace.hpp"
 #include "process.hpp"
 #include "support.hpp"
+#include "test_kernels.hpp"
 #include "host/src/runtime/opencl.hpp"
 
 using namespace brdfcl;
@@ -264,7 +265,7 @@ TEST(ExactIbl, SplitSumOptionsGiveTheDefaultBytes) {
 // integral pi only if the density of the samples is the pdf, and only from lanes that compute.
 TEST(ExactIbl, SamplersMatchTheirPdfsAtSixteenLanes) {
   auto& rt = runtime();
-  auto program = rt.opencl().program("probe_sampling.cl", "-DBRDFCL_W=16");
+  auto program = testProgram(rt, "probe_sampling.cl", "-DBRDFCL_W=16");
   const int side = 512, n = side * side;
   std::vector<float> u1(n), u2(n), out(n);
   std::mt19937 rng(7);

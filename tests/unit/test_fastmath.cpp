@@ -6,6 +6,7 @@
 #include <cfloat>
 
 #include "support.hpp"
+#include "test_kernels.hpp"
 #include "host/src/eval/workload.hpp"
 #include "peers.hpp"
 #include "host/src/runtime/opencl.hpp"
@@ -27,7 +28,7 @@ struct Probe {
 
 Probe probe(std::vector<float> x) {
   Runtime& rt = runtime();
-  auto program = rt.opencl().program("probe_fastmath.cl", "-DBRDFCL_W=1");
+  auto program = testProgram(rt, "probe_fastmath.cl", "-DBRDFCL_W=1");
   Probe p{std::move(x), {}};
   p.out.resize(4 * p.x.size());
   cl::Buffer in(rt.opencl().context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, p.x.size() * 4, p.x.data());

@@ -5,10 +5,10 @@
 
 #include <algorithm>
 #include <array>
-#include <atomic>
+#include <exception>
 #include <cmath>
 #include <limits>
-#include <thread>
+#include <vector>
 #include <utility>
 
 #include "brdfcl/error.hpp"
@@ -138,16 +138,6 @@ GBuffer Raycaster::trace(const View& view, int width, int height, float jx, floa
 }
 
 namespace {
-// Runs `work` on every core (two threads at least), this thread included, and joins them.
-template <class Work>
-void onEveryCore(const Work& work) {
-  const unsigned threads = std::max(2u, std::thread::hardware_concurrency());
-  std::vector<std::thread> pool;
-  for (unsigned k = 1; k < threads; ++k) pool.emplace_back(work);
-  work();
-  for (std::thread& th : pool) th.join();
-}
-
 // Sizes and zeroes every channel of `g` for n pixels. A 1080p G-buffer is 270 MB of zeroed pages:
 // channels allocated on every core, so that their page faults and zeroing do not all fall on one.
 void zeroChannels(GBuffer& g, std::size_t n) {
@@ -155,11 +145,19 @@ void zeroChannels(GBuffer& g, std::size_t n) {
       {&g.P, 3}, {&g.N, 3}, {&g.T, 3}, {&g.baseColor, 3}, {&g.emissive, 3}, {&g.sheenColor, 3}, {&g.clearcoatN, 3},
       {&g.V, 3}, {&g.metallic, 1}, {&g.roughness, 1}, {&g.mask, 1}, {&g.sheenRoughness, 1}, {&g.clearcoat, 1},
       {&g.clearcoatRoughness, 1}, {&g.anisotropyStrength, 1}, {&g.anisotropyRotation, 1}, {&g.occlusion, 1}}};
-  std::atomic<std::size_t> nextChannel{0};
-  onEveryCore([&] {
-    for (std::size_t c; (c = nextChannel.fetch_add(1)) < channels.size();)
-      channels[c].first->assign(channels[c].second * n, 0.0f);
-  });
+  // Out of memory must not leave the OpenMP region: caught, and rethrown after it.
+  std::array<std::exception_ptr, std::tuple_size<decltype(channels)>::value> failures;
+  const int count = int(channels.size());
+#pragma omp parallel for schedule(dynamic, 1)
+  for (int c = 0; c < count; ++c) {
+    try {
+      channels[std::size_t(c)].first->assign(channels[std::size_t(c)].second * n, 0.0f);
+    } catch (...) {
+      failures[std::size_t(c)] = std::current_exception();
+    }
+  }
+  for (const std::exception_ptr& e : failures)
+    if (e) std::rethrow_exception(e);
 }
 
 // The primary rays of the 4x4 pixels from (x0, y0) into `rh`, their unit directions into `dirs`;
@@ -281,8 +279,11 @@ void Raycaster::trace(const View& view, int width, int height, float jx, float j
   // brought into its cache.
   constexpr int kTileW = 32, kTileH = 8;
   const int tilesX = (width + kTileW - 1) / kTileW, tiles = tilesX * ((height + kTileH - 1) / kTileH);
-  std::atomic<int> nextTile{0};
-  onEveryCore([&] {
+  // Each thread keeps one ray context and takes tiles as it frees up. An exception must not leave
+  // the OpenMP region: each tile's is kept, and the first in the tiles' order rethrown after it.
+  std::vector<std::exception_ptr> failures(std::size_t(std::max(tiles, 0)));
+#pragma omp parallel
+  {
     RayContext rc;
     rtcInitIntersectContext(&rc.embree);
     rc.embree.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
@@ -290,12 +291,19 @@ void Raycaster::trace(const View& view, int width, int height, float jx, float j
     rc.orthographic = view.orthographic;
     rc.coneSpread = static_cast<float>(2.0 * view.tanHalfFovY / height);
     rc.coneWidth = static_cast<float>(2.0 * view.halfHeight / height);
-    for (int tile; (tile = nextTile.fetch_add(1)) < tiles;) {
-      const int x0 = (tile % tilesX) * kTileW, y0 = (tile / tilesX) * kTileH;
-      for (int y = y0; y < std::min(height, y0 + kTileH); y += 4)
-        for (int x = x0; x < std::min(width, x0 + kTileW); x += 4) traceBlock(rc, x, y);
+#pragma omp for schedule(dynamic, 1)
+    for (int tile = 0; tile < tiles; ++tile) {
+      try {
+        const int x0 = (tile % tilesX) * kTileW, y0 = (tile / tilesX) * kTileH;
+        for (int y = y0; y < std::min(height, y0 + kTileH); y += 4)
+          for (int x = x0; x < std::min(width, x0 + kTileW); x += 4) traceBlock(rc, x, y);
+      } catch (...) {
+        failures[std::size_t(tile)] = std::current_exception();
+      }
     }
-  });
+  }
+  for (const std::exception_ptr& e : failures)
+    if (e) std::rethrow_exception(e);
 }
 
 }  // namespace brdfcl::gltf

@@ -4,11 +4,8 @@
 #include "gltf/texture.hpp"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <exception>
-#include <mutex>
-#include <thread>
 
 #include "brdfcl/error.hpp"
 
@@ -278,27 +275,23 @@ Textures::Textures(const Asset& asset) : textures_(asset.textures), samplers_(as
     use(m.anisotropyTexture, "anisotropyTexture", ColorSpace::Linear, kRgb);
   }
   chains_.resize(need.size());
-  // Chains are independent: build them on every core (7 chains of 2048^2 take seconds on one).
-  std::atomic<std::size_t> next{0};
-  std::exception_ptr failure;
-  std::mutex failureLock;
-  auto worker = [&] {
-    for (std::size_t k; (k = next.fetch_add(1)) < need.size();) {
-      if (!need[k]) continue;
-      try {
-        chains_[k] = buildChain(asset.images[k / 2], need[k], static_cast<ColorSpace>(k % 2));
-      } catch (...) {
-        std::lock_guard<std::mutex> lock(failureLock);
-        if (!failure) failure = std::current_exception();
-      }
+  // Chains are independent: build them on every core (7 chains of 2048^2 take seconds on one),
+  // one at a time to whichever thread is free. An exception must not leave the OpenMP region:
+  // each chain's is kept, and the first in the chains' order rethrown after it.
+  std::vector<std::exception_ptr> failures(need.size());
+  const long count = long(need.size());
+#pragma omp parallel for schedule(dynamic, 1)
+  for (long k = 0; k < count; ++k) {
+    if (!need[std::size_t(k)]) continue;
+    try {
+      chains_[std::size_t(k)] =
+          buildChain(asset.images[std::size_t(k) / 2], need[std::size_t(k)], static_cast<ColorSpace>(k % 2));
+    } catch (...) {
+      failures[std::size_t(k)] = std::current_exception();
     }
-  };
-  std::vector<std::thread> pool;
-  const unsigned threads = std::max(1u, std::thread::hardware_concurrency());
-  for (unsigned k = 1; k < threads; ++k) pool.emplace_back(worker);
-  worker();
-  for (std::thread& t : pool) t.join();
-  if (failure) std::rethrow_exception(failure);
+  }
+  for (const std::exception_ptr& e : failures)
+    if (e) std::rethrow_exception(e);
 }
 
 std::size_t Textures::bytes() const {

@@ -29,13 +29,13 @@
 #include <set>
 #include <stdexcept>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include "brdfcl/error.hpp"
 #include "brdfcl/image.hpp"
 #include "brdfcl/io.hpp"
 #include "io/option_style.hpp"
+#include "io/rows.hpp"
 
 namespace brdfcl {
 namespace {
@@ -329,7 +329,7 @@ void checkValues(const std::vector<std::vector<float>>& planes, const std::vecto
   if (!mask) return;
   const std::size_t n = mask->size();
   const ValueCheck check{planes, sources, names, width, shown, skip, *mask};
-  const unsigned threads = n < (1u << 16) ? 1u : std::max(1u, std::min(16u, std::thread::hardware_concurrency()));
+  const unsigned threads = n < (1u << 16) ? 1u : unsigned(std::min<std::size_t>(16, detail::parallelThreads()));
   const std::size_t band = (n + threads - 1) / threads;
   constexpr std::size_t kBlock = 2048;
   std::vector<Failure> found(threads);
@@ -348,10 +348,18 @@ void checkValues(const std::vector<std::vector<float>>& planes, const std::vecto
         }
     }
   };
-  std::vector<std::thread> pool;
-  for (unsigned t = 1; t < threads; ++t) pool.emplace_back(work, t);
-  work(0);
-  for (std::thread& th : pool) th.join();
+  // One band a thread; an exception (out of memory) must not leave the OpenMP region.
+  std::vector<std::exception_ptr> errors(threads);
+#pragma omp parallel for num_threads(int(threads)) schedule(static, 1) if (threads > 1)
+  for (int t = 0; t < int(threads); ++t) {
+    try {
+      work(unsigned(t));
+    } catch (...) {
+      errors[std::size_t(t)] = std::current_exception();
+    }
+  }
+  for (const std::exception_ptr& e : errors)
+    if (e) std::rethrow_exception(e);
   for (const Failure& f : found)
     if (f.pixel != SIZE_MAX) throw Error(f.message);
 }

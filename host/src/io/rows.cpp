@@ -4,9 +4,11 @@
 #include <algorithm>
 #include <cctype>
 #include <exception>
-#include <system_error>
-#include <thread>
 #include <vector>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 
 namespace brdfcl::detail {
 
@@ -17,32 +19,30 @@ bool hasNpyExtension(const std::string& path) {
   return ext == ".npy";
 }
 
+std::size_t parallelThreads() {
+#ifdef _OPENMP
+  return std::size_t(std::max(1, omp_get_max_threads()));
+#else
+  return 1;
+#endif
+}
+
 std::size_t workerCount(std::size_t bytes) {
-  const std::size_t cores = std::max(1u, std::thread::hardware_concurrency());
-  return std::min<std::size_t>({cores, 64, bytes / (1u << 20) + 1});
+  return std::min<std::size_t>({parallelThreads(), 64, bytes / (1u << 20) + 1});
 }
 
 void parallelFor(std::size_t n, const std::function<void(std::size_t)>& body) {
+  // An exception must not leave an OpenMP region: each is kept, and the first rethrown after it.
   std::vector<std::exception_ptr> errors(n);
-  const auto run = [&](std::size_t i) {
+  const long count = long(n);
+#pragma omp parallel for num_threads(int(std::max<std::size_t>(n, 1))) schedule(static, 1) if (n > 1)
+  for (long i = 0; i < count; ++i) {
     try {
-      body(i);
+      body(std::size_t(i));
     } catch (...) {
-      errors[i] = std::current_exception();
-    }
-  };
-  std::vector<std::thread> threads;
-  std::size_t next = 1;
-  for (; next < n; ++next) {
-    try {
-      threads.emplace_back(run, next);
-    } catch (const std::system_error&) {
-      break;  // no more threads available: the rest runs here
+      errors[std::size_t(i)] = std::current_exception();
     }
   }
-  if (n > 0) run(0);
-  for (; next < n; ++next) run(next);
-  for (auto& t : threads) t.join();
   for (auto& e : errors)
     if (e) std::rethrow_exception(e);
 }

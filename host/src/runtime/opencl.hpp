@@ -59,6 +59,12 @@ struct Runtime::OpenCL {
   // builds Batch as Exact or as on a GPU whatever the device, for tests and tuning, and
   // BRDFCL_BUILD_OPTIONS is appended to every program's options, for tuning.
   std::string mathOptions(Arithmetic arithmetic) const;
+  // The same for a caller's own source text (a test's probe kernel, say), its #include "..."
+  // lines resolved from the embedded kernels/ as program() does; `tag` names it in build errors.
+  cl::Program programFromSource(const std::string& tag, const std::string& source, const std::string& defines = "");
+  // Builds (or returns from the memory or disk cache) a source whose includes are expanded.
+  cl::Program buildExpanded(const std::string& tag, const std::string& source, const std::string& defines,
+                            Arithmetic arithmetic);
 
   cl::Device device_;
   cl::Context context_;

@@ -126,12 +126,11 @@ std::string pickStd(const std::string& openclC) {
   return fmt::format("-cl-std=CL{}.{}", major, minor);
 }
 
-void expandIncludes(const std::string& name, std::set<std::string>& seen, std::string& out) {
-  if (!seen.insert(name).second) return;  // every header has guards; skip the work as well
-  const auto& files = detail::embeddedKernels();
-  auto it = files.find(name);
-  if (it == files.end()) throw Error(fmt::format("internal: kernel file '{}' is not embedded", name), 3);
-  std::istringstream in(it->second);
+void expandIncludes(const std::string& name, std::set<std::string>& seen, std::string& out);
+
+// Appends `text` to `out` with each #include "..." line replaced by that embedded file, expanded.
+void expandText(const std::string& text, std::set<std::string>& seen, std::string& out) {
+  std::istringstream in(text);
   std::string line;
   while (std::getline(in, line)) {
     auto pos = line.find("#include \"");
@@ -143,6 +142,14 @@ void expandIncludes(const std::string& name, std::set<std::string>& seen, std::s
     out += line;
     out += '\n';
   }
+}
+
+void expandIncludes(const std::string& name, std::set<std::string>& seen, std::string& out) {
+  if (!seen.insert(name).second) return;  // every header has guards; skip the work as well
+  const auto& files = detail::embeddedKernels();
+  auto it = files.find(name);
+  if (it == files.end()) throw Error(fmt::format("internal: kernel file '{}' is not embedded", name), 3);
+  expandText(it->second, seen, out);
 }
 
 }  // namespace
@@ -255,7 +262,19 @@ std::string Runtime::OpenCL::mathOptions(Arithmetic arithmetic) const {
 
 cl::Program Runtime::OpenCL::program(const std::string& kernelFile, const std::string& defines,
                                      Arithmetic arithmetic) {
-  std::string source = kernelSource(kernelFile);
+  return buildExpanded(kernelFile, kernelSource(kernelFile), defines, arithmetic);
+}
+
+cl::Program Runtime::OpenCL::programFromSource(const std::string& tag, const std::string& source,
+                                               const std::string& defines) {
+  std::set<std::string> seen;
+  std::string expanded;
+  expandText(source, seen, expanded);
+  return buildExpanded(tag, expanded, defines, Arithmetic::Exact);
+}
+
+cl::Program Runtime::OpenCL::buildExpanded(const std::string& tag, const std::string& source,
+                                           const std::string& defines, Arithmetic arithmetic) {
   // -w: PoCL prints clang warnings (e.g. the float16 ABI note on AVX2) to stderr; real
   // problems are errors and reach the user through the build log.
   std::string options = clStd_ + mathOptions(arithmetic) + " -w " + defines;
@@ -293,7 +312,7 @@ cl::Program Runtime::OpenCL::program(const std::string& kernelFile, const std::s
       program = cl::Program(context_, source);
       program.build(std::vector<cl::Device>{device_}, options.c_str());
     } catch (const cl::Error&) {
-      rethrowOpenCL(fmt::format("building {} with '{}'", kernelFile, options));
+      rethrowOpenCL(fmt::format("building {} with '{}'", tag, options));
     }
     try {
       const auto binaries = program.getInfo<CL_PROGRAM_BINARIES>();
