@@ -41,7 +41,16 @@ struct SamplingBatch {
   cl::Program program;
   cl::Buffer materials, table, albedo;
   int tableSize = 2, albedoSize = 2;
+  int lanes = 1;  // rows a work-item (BRDFCL_W)
 };
+
+// One launch of rows: the whole groups of `lanes` rows (a work-item each), then the partial group.
+void launchRows(cl::CommandQueue& q, cl::Kernel& whole, cl::Kernel& tail, std::size_t n, int lanes,
+                cl::Event* wholeDone = nullptr, cl::Event* tailDone = nullptr) {
+  const std::size_t groups = n / std::size_t(lanes);
+  if (groups > 0) q.enqueueNDRangeKernel(whole, cl::NullRange, cl::NDRange(groups), cl::NullRange, nullptr, wholeDone);
+  if (n % std::size_t(lanes)) q.enqueueNDRangeKernel(tail, cl::NullRange, cl::NDRange(1), cl::NullRange, nullptr, tailDone);
+}
 
 }  // namespace
 
@@ -62,7 +71,9 @@ SamplingBatch makeSamplingBatch(Runtime& rt, const EvalOptions& options, const s
   const std::vector<float>& e = albedo ? albedo->values : dummy;
   s.albedoSize = albedo ? int(albedo->width) : 2;
   try {
-    s.program = rt.opencl().program("sample.cl", materialDefines(options, featuresOf(materials, options.profile)));
+    s.lanes = laneShape(rt.info()).lanes;
+    s.program = rt.opencl().program("sample.cl", materialDefines(options, featuresOf(materials, options.profile)) +
+                                                     fmt::format(" -DBRDFCL_W={}", s.lanes));
     const auto& ctx = rt.opencl().context();
     s.materials = cl::Buffer(ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, packed.size() * sizeof(brdfcl_material),
                              const_cast<brdfcl_material*>(packed.data()));
@@ -101,23 +112,25 @@ void Evaluator::sample(const std::vector<MaterialParams>& materials, const std::
   const std::size_t chunk = std::max<std::size_t>(
       1, std::min({launchLimit(), std::size_t(rt_.info().maxAlloc) / 28, staged ? kStagedRows : SIZE_MAX}));
   try {
-    cl::Kernel kernel(s.program, "sample_rows");
+    cl::Kernel kernel(s.program, "sample_rows"), tail(s.program, "sample_rows_tail");
     const auto setArgs = [&](const cl::Buffer& V, const cl::Buffer& index, const cl::Buffer& U, std::size_t n,
                              const cl::Buffer& result) {
-      int arg = 0;
-      kernel.setArg(arg++, V);
-      if (material)
-        kernel.setArg(arg++, index);
-      else
-        kernel.setArg(arg++, sizeof(cl_mem), nullptr);
-      kernel.setArg(arg++, U);
-      kernel.setArg(arg++, cl_uint(n));
-      kernel.setArg(arg++, s.materials);
-      kernel.setArg(arg++, s.table);
-      kernel.setArg(arg++, s.tableSize);
-      kernel.setArg(arg++, s.albedo);
-      kernel.setArg(arg++, s.albedoSize);
-      kernel.setArg(arg++, result);
+      for (cl::Kernel* k : {&kernel, &tail}) {
+        int arg = 0;
+        k->setArg(arg++, V);
+        if (material)
+          k->setArg(arg++, index);
+        else
+          k->setArg(arg++, sizeof(cl_mem), nullptr);
+        k->setArg(arg++, U);
+        k->setArg(arg++, cl_uint(n));
+        k->setArg(arg++, s.materials);
+        k->setArg(arg++, s.table);
+        k->setArg(arg++, s.tableSize);
+        k->setArg(arg++, s.albedo);
+        k->setArg(arg++, s.albedoSize);
+        k->setArg(arg++, result);
+      }
     };
     if (staged) {
       // Pinned, double-buffered copies (eval/staging.hpp): one chunk's copies overlap the other's launch.
@@ -130,7 +143,7 @@ void Evaluator::sample(const std::vector<MaterialParams>& materials, const std::
         const cl::Buffer index = material ? st.in(2, material + first, 4 * n) : cl::Buffer();
         float* to = out + 7 * first;
         setArgs(V, index, U, n, st.out(28 * n, [to, n](const void* p) { copySpans({{to, p, 28 * n}}); }));
-        st.queue().enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(n), cl::NullRange);
+        launchRows(st.queue(), kernel, tail, n, s.lanes);
         st.end();
       }
       st.drain();
@@ -144,7 +157,7 @@ void Evaluator::sample(const std::vector<MaterialParams>& materials, const std::
       cl::Buffer index = input(ctx, material ? material + first : nullptr, material ? n : 0);
       cl::Buffer result(ctx, CL_MEM_WRITE_ONLY, 28 * n);
       setArgs(V, index, U, n, result);
-      q.enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(n), cl::NullRange);
+      launchRows(q, kernel, tail, n, s.lanes);
       q.enqueueReadBuffer(result, CL_TRUE, 0, 28 * n, out + 7 * first);
     }
   } catch (const cl::Error&) {
@@ -182,21 +195,23 @@ void Evaluator::pdf(const std::vector<MaterialParams>& materials, const Samples&
   const std::size_t chunk = std::max<std::size_t>(
       1, std::min({launchLimit(), std::size_t(rt_.info().maxAlloc) / 12, staged ? kStagedRows : SIZE_MAX}));
   try {
-    cl::Kernel kernel(s.program, "pdf_rows");
+    cl::Kernel kernel(s.program, "pdf_rows"), tail(s.program, "pdf_rows_tail");
     const auto setArgs = [&](const cl::Buffer& L, const cl::Buffer& V, const cl::Buffer& index, std::size_t n,
                              const cl::Buffer& result) {
-      int arg = 0;
-      kernel.setArg(arg++, L);
-      kernel.setArg(arg++, V);
-      if (material)
-        kernel.setArg(arg++, index);
-      else
-        kernel.setArg(arg++, sizeof(cl_mem), nullptr);
-      kernel.setArg(arg++, cl_uint(n));
-      kernel.setArg(arg++, s.materials);
-      kernel.setArg(arg++, s.albedo);
-      kernel.setArg(arg++, s.albedoSize);
-      kernel.setArg(arg++, result);
+      for (cl::Kernel* k : {&kernel, &tail}) {
+        int arg = 0;
+        k->setArg(arg++, L);
+        k->setArg(arg++, V);
+        if (material)
+          k->setArg(arg++, index);
+        else
+          k->setArg(arg++, sizeof(cl_mem), nullptr);
+        k->setArg(arg++, cl_uint(n));
+        k->setArg(arg++, s.materials);
+        k->setArg(arg++, s.albedo);
+        k->setArg(arg++, s.albedoSize);
+        k->setArg(arg++, result);
+      }
     };
     if (staged) {
       Staging st(rt_);
@@ -208,7 +223,7 @@ void Evaluator::pdf(const std::vector<MaterialParams>& materials, const Samples&
         const cl::Buffer index = material ? st.in(2, material + first, 4 * n) : cl::Buffer();
         float* to = pdf + first;
         setArgs(L, V, index, n, st.out(4 * n, [to, n](const void* p) { copySpans({{to, p, 4 * n}}); }));
-        st.queue().enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(n), cl::NullRange);
+        launchRows(st.queue(), kernel, tail, n, s.lanes);
         st.end();
       }
       st.drain();
@@ -222,7 +237,7 @@ void Evaluator::pdf(const std::vector<MaterialParams>& materials, const Samples&
       cl::Buffer index = input(ctx, material ? material + first : nullptr, material ? n : 0);
       cl::Buffer result(ctx, CL_MEM_WRITE_ONLY, 4 * n);
       setArgs(L, V, index, n, result);
-      q.enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(n), cl::NullRange);
+      launchRows(q, kernel, tail, n, s.lanes);
       q.enqueueReadBuffer(result, CL_TRUE, 0, 4 * n, pdf + first);
     }
   } catch (const cl::Error&) {
@@ -240,9 +255,9 @@ struct SampleBatch::State {
   Runtime* rt = nullptr;
   SamplingBatch s;
   std::size_t n = 0;
-  cl::Kernel kernel;
+  cl::Kernel kernel, tail;
   cl::Buffer view, index, u, result;
-  cl::Event launch;
+  cl::Event launch, tailLaunch;
 };
 
 SampleBatch::SampleBatch(Runtime& rt, Evaluator& ev, const std::vector<MaterialParams>& materials,
@@ -275,20 +290,23 @@ SampleBatch::SampleBatch(Runtime& rt, Evaluator& ev, const std::vector<MaterialP
     s_->index = input(ctx, material.empty() ? nullptr : material.data(), material.size());
     s_->result = cl::Buffer(ctx, CL_MEM_READ_WRITE, 28 * n);
     s_->kernel = cl::Kernel(s_->s.program, "sample_rows");
-    int arg = 0;
-    s_->kernel.setArg(arg++, s_->view);
-    if (!material.empty())
-      s_->kernel.setArg(arg++, s_->index);
-    else
-      s_->kernel.setArg(arg++, sizeof(cl_mem), nullptr);
-    s_->kernel.setArg(arg++, s_->u);
-    s_->kernel.setArg(arg++, cl_uint(n));
-    s_->kernel.setArg(arg++, s_->s.materials);
-    s_->kernel.setArg(arg++, s_->s.table);
-    s_->kernel.setArg(arg++, s_->s.tableSize);
-    s_->kernel.setArg(arg++, s_->s.albedo);
-    s_->kernel.setArg(arg++, s_->s.albedoSize);
-    s_->kernel.setArg(arg++, s_->result);
+    s_->tail = cl::Kernel(s_->s.program, "sample_rows_tail");
+    for (cl::Kernel* k : {&s_->kernel, &s_->tail}) {
+      int arg = 0;
+      k->setArg(arg++, s_->view);
+      if (!material.empty())
+        k->setArg(arg++, s_->index);
+      else
+        k->setArg(arg++, sizeof(cl_mem), nullptr);
+      k->setArg(arg++, s_->u);
+      k->setArg(arg++, cl_uint(n));
+      k->setArg(arg++, s_->s.materials);
+      k->setArg(arg++, s_->s.table);
+      k->setArg(arg++, s_->s.tableSize);
+      k->setArg(arg++, s_->s.albedo);
+      k->setArg(arg++, s_->s.albedoSize);
+      k->setArg(arg++, s_->result);
+    }
   } catch (const cl::Error&) {
     rethrowOpenCL("preparing the sampling batch");
   }
@@ -301,19 +319,24 @@ std::size_t SampleBatch::size() const { return s_->n; }
 void SampleBatch::run() {
   try {
     auto& q = s_->rt->opencl().queue();
-    q.enqueueNDRangeKernel(s_->kernel, cl::NullRange, cl::NDRange(s_->n), cl::NullRange, nullptr, &s_->launch);
-    s_->launch.wait();
+    s_->launch = cl::Event();
+    s_->tailLaunch = cl::Event();
+    launchRows(q, s_->kernel, s_->tail, s_->n, s_->s.lanes, &s_->launch, &s_->tailLaunch);
+    q.finish();
   } catch (const cl::Error&) {
     rethrowOpenCL("sampling directions");
   }
 }
 
 double SampleBatch::lastKernelSeconds() const {
-  if (s_->launch() == nullptr) return 0;
+  // The whole groups' launch and the tail's, either of which may be absent.
   try {
-    const auto begin = s_->launch.getProfilingInfo<CL_PROFILING_COMMAND_START>();
-    const auto end = s_->launch.getProfilingInfo<CL_PROFILING_COMMAND_END>();
-    return double(end - begin) * 1e-9;
+    double seconds = 0;
+    for (const cl::Event* e : {&s_->launch, &s_->tailLaunch}) {
+      if ((*e)() == nullptr) continue;
+      seconds += double(e->getProfilingInfo<CL_PROFILING_COMMAND_END>() - e->getProfilingInfo<CL_PROFILING_COMMAND_START>()) * 1e-9;
+    }
+    return seconds;
   } catch (const cl::Error&) {
     rethrowOpenCL("reading the kernel's profiling times");
   }
