@@ -21,7 +21,10 @@ enum { ACC_R, ACC_G, ACC_B, ACC_BLOCK_R, ACC_BLOCK_G, ACC_BLOCK_B, ACC_LUM, ACC_
        ACC_PLANES = ACC_BLOCK_LUM + REPLICATES };
 #define BLOCK 256
 
-enum { TECH_DIFFUSE, TECH_SPECULAR, TECH_SHEEN, TECH_COAT, TECH_ENV, TECH_COUNT };
+/* The techniques are sample.cl's lobes in its order, then the environment. */
+enum { TECH_DIFFUSE, TECH_SPECULAR, TECH_SHEEN, TECH_COAT, TECH_UNIFORM, TECH_ENV, TECH_COUNT };
+typedef char techniques_follow_the_lobes[(TECH_ENV == LOBE_COUNT && TECH_UNIFORM == LOBE_UNIFORM &&
+                                          TECH_COAT == LOBE_COAT) ? 1 : -1];
 
 /* A 32-bit integer mix (xor-shift / multiply rounds) for the per-pixel scramble. */
 static inline uint hash_u32(uint x) {
