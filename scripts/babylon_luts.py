@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 # Carries Babylon.js's environment BRDF texture (the RGBD PNG inlined in brdfTextureTools.ts) into
 # host/src/model/babylon_brdf_lut.inc as the half-float texels Babylon expands it to
-# (docs/profiles.md "Tables"); scripts/engine-check reads the same texture through decoded_texels().
+# (docs/profiles.md "Tables"); scripts/engine-check reads the same texture through
+# decoded_texels() (engine_check/babylon.py).
 import argparse
 import base64
 import hashlib

@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 # Carries the glTF Sample Renderer's sheen albedo table (assets/images/lut_sheen_E.png) into
 # host/src/model/khronos_sheen_e_lut.inc as the 8-bit texels a WebGL upload of it holds
-# (docs/profiles.md "Tables"); scripts/engine-check reads the same PNG through read_texels().
+# (docs/profiles.md "Tables"); scripts/engine-check reads the same PNG through
+# read_texels() (engine_check/khronos.py).
 import argparse
 import hashlib
 import os
