@@ -10,6 +10,7 @@
 
 #include "brdfcl/gltf.hpp"
 #include "host/src/render/gltf_frame.hpp"
+#include "tests/assets_dir.hpp"
 
 using namespace brdfcl;
 
@@ -18,9 +19,9 @@ namespace {
 constexpr int kWidth = 1920, kHeight = 1080;
 
 std::string sheenChair() {
-  const char* env = std::getenv("BRDFCL_ASSETS");
-  const std::filesystem::path root = env ? env : BRDFCL_SOURCE_DIR "/../shared/assets";
-  const auto p = root / "SheenChair" / "glTF" / "SheenChair.gltf";
+  const std::string root = brdfcl::test::assetsDir();
+  if (root.empty()) return "";
+  const auto p = std::filesystem::path(root) / "SheenChair" / "glTF" / "SheenChair.gltf";
   return std::filesystem::exists(p) ? p.string() : "";
 }
 

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "host/src/io/output.hpp"
+#include "tests/assets_dir.hpp"
 #include "tests/unit/process.hpp"
 
 namespace fs = std::filesystem;
@@ -105,9 +106,7 @@ void BM_StartupRenderSpheres64Cold(benchmark::State& state) {
 }
 
 void BM_StartupFirstUseOf1kHdr(benchmark::State& state) {
-  const char* env = std::getenv("BRDFCL_ASSETS");
-  const fs::path hdr = fs::path(env ? env : BRDFCL_SOURCE_DIR "/../shared/assets") / "environments" / "polyhaven" /
-                       "quarry_01_1k.hdr";
+  const fs::path hdr = fs::path(brdfcl::test::assetsDir()) / "environments" / "polyhaven" / "quarry_01_1k.hdr";
   if (!fs::exists(hdr)) {
     state.SkipWithError(("asset missing: " + hdr.string()).c_str());
     return;

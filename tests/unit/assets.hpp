@@ -3,22 +3,12 @@
 #pragma once
 #include <gtest/gtest.h>
 
-#include <cstdlib>
+#include "tests/assets_dir.hpp"
+
 #include <filesystem>
 #include <string>
 
 namespace brdfcl::test {
-
-// The assets folder, or "" when there is none.
-inline std::string assetsDir() {
-  namespace fs = std::filesystem;
-  if (const char* e = std::getenv("BRDFCL_ASSETS"); e && *e) return fs::is_directory(e) ? std::string(e) : std::string();
-#ifdef BRDFCL_SOURCE_DIR
-  const fs::path p = fs::path(BRDFCL_SOURCE_DIR) / ".." / "shared" / "assets";
-  if (fs::is_directory(p)) return fs::weakly_canonical(p).string();
-#endif
-  return {};
-}
 
 // The path of `relative` inside the assets folder, or "" when it is missing.
 inline std::string assetPath(const std::string& relative) {

@@ -33,6 +33,7 @@
 #include "brdfcl/render.hpp"
 #include "brdfcl/scene.hpp"
 #include "gltf_support.hpp"
+#include "tests/assets_dir.hpp"
 #include "process.hpp"
 #include "support.hpp"
 
@@ -128,13 +129,6 @@ inline double maxDifference(const std::vector<float>& a, const std::vector<float
 inline std::vector<float> readRgb(const std::string& path) {
   int w = 0, h = 0;
   return readExrRgb(path, w, h);
-}
-
-// The shared glTF sample assets: $BRDFCL_ASSETS, else beside the checkout; empty when absent.
-inline std::string sampleAssets() {
-  const char* env = std::getenv("BRDFCL_ASSETS");
-  const std::string dir = env && *env ? env : std::string(BRDFCL_SOURCE_DIR) + "/../shared/assets";
-  return std::filesystem::is_directory(dir) ? dir : std::string();
 }
 
 constexpr const char* kLights = R"("lights": [{"type": "directional", "direction": [0.3, -0.6, -0.7], "intensity": 2}])";

@@ -120,7 +120,7 @@ TEST(GBufferCheck, BrdfclsOwnGBuffersPass) {
     const GBuffer r = readGBuffer(dir.path("s.exr"));
     EXPECT_TRUE(r.camera.has_value());
   }
-  const std::string assets = sampleAssets();
+  const std::string assets = assetsDir();
   if (assets.empty()) GTEST_SKIP() << "no sample assets ($BRDFCL_ASSETS)";
   int checked = 0;
   for (const auto& e : std::filesystem::recursive_directory_iterator(assets)) {

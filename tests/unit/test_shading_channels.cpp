@@ -24,6 +24,7 @@
 #include "brdfcl/image.hpp"
 #include "brdfcl/render.hpp"
 #include "brdfcl/scene.hpp"
+#include "tests/assets_dir.hpp"
 #include "process.hpp"
 #include "support.hpp"
 
@@ -31,14 +32,6 @@ using namespace brdfcl;
 using namespace brdfcl::test;
 
 namespace {
-
-// The shared assets (environment maps) live outside the repository: $BRDFCL_ASSETS, else beside
-// the checkout. Empty when absent.
-std::string channelTestAssets() {
-  const char* env = std::getenv("BRDFCL_ASSETS");
-  const std::string dir = env && *env ? env : std::string(BRDFCL_SOURCE_DIR) + "/../shared/assets";
-  return std::filesystem::is_directory(dir) ? dir : std::string();
-}
 
 // A 1x1 surface pixel at the origin, N = +Z, T = +X, with every layer that adds image-based light.
 GBuffer layeredPixel() {
@@ -559,7 +552,7 @@ void expectPlausibleEnvironment(const std::string& path) {
 }
 
 TEST(EnvironmentHdr, SharedAssetsDecode) {
-  const std::string assets = channelTestAssets();
+  const std::string assets = assetsDir();
   if (assets.empty()) GTEST_SKIP() << "no shared assets: set BRDFCL_ASSETS to the assets directory";
   // Every Poly Haven .hdr (run-length encoded RGBE) and every Blender studio light (DWAB EXR).
   int count = 0;
