@@ -90,6 +90,65 @@ static inline float3 env_sample_direction(__global const float* rows, __global c
 static inline float3 from_frame(vec3w l, float3 t, float3 b, float3 n) { return l.x * t + l.y * b + l.z * n; }
 static inline vec3w lanes3(float3 v) { vec3w o = {v.x, v.y, v.z}; return o; }
 
+/* Technique probabilities: the environment's share comes from the host (large for a peaked
+   environment such as a sun, 0 for a uniform one, where BRDF sampling alone is best); the rest
+   is split between the lobes as `brdfcl sample` splits it at this view (sample.cl). */
+static inline void technique_probabilities(const material_lanes m, float NdotV, __global const float* sheen_e,
+                                           int sheen_e_size, float p_env, float* p, float* cdf) {
+  float plobe[LOBE_COUNT];
+  lobe_probabilities(m, NdotV, sheen_e, sheen_e_size, plobe);
+  float run = 0.0f;
+  for (int t = 0; t < TECH_ENV; ++t) {
+    p[t] = (1.0f - p_env) * plobe[t];
+    run += p[t];
+    cdf[t] = run;
+  }
+  p[TECH_ENV] = p_env;
+  cdf[TECH_ENV] = 1.0f;
+}
+
+/* The technique whose interval of the CDF holds u1; u1 rescaled to [0, 1) within it. A share
+   left by float rounding above the last lobe goes to the cosine hemisphere (always present) when
+   the environment has none. */
+static inline int choose_technique(const float* p, const float* cdf, float p_env, float* u1) {
+  int tech = 0;
+  while (tech < TECH_ENV && !(*u1 < cdf[tech] && p[tech] > 0.0f)) ++tech;
+  if (tech == TECH_ENV && p_env <= 0.0f) {
+    tech = TECH_DIFFUSE;
+    *u1 = 0.5f;
+  } else {
+    float lo = cdf[tech] - p[tech];
+    *u1 = clamp((*u1 - lo) / p[tech], 0.0f, 0.99999994f);
+  }
+  return tech;
+}
+
+/* The running sums of a pixel (the ACC_ planes): those of the earlier launches, or zeros for the first. */
+static inline void acc_load(__global const float* restrict acc, int np, int i, int sample_begin, float3* total,
+                            float3* block, float* lum_total, float* lum_block) {
+  *total = (float3)(0.0f);
+  *block = (float3)(0.0f);
+  for (int r = 0; r < REPLICATES; ++r) lum_total[r] = lum_block[r] = 0.0f;
+  if (sample_begin > 0) {
+    *total = (float3)(acc[ACC_R * np + i], acc[ACC_G * np + i], acc[ACC_B * np + i]);
+    *block = (float3)(acc[ACC_BLOCK_R * np + i], acc[ACC_BLOCK_G * np + i], acc[ACC_BLOCK_B * np + i]);
+    for (int r = 0; r < REPLICATES; ++r) {
+      lum_total[r] = acc[(ACC_LUM + r) * np + i];
+      lum_block[r] = acc[(ACC_BLOCK_LUM + r) * np + i];
+    }
+  }
+}
+
+static inline void acc_store(__global float* restrict acc, int np, int i, float3 total, float3 block,
+                             const float* lum_total, const float* lum_block) {
+  acc[ACC_R * np + i] = total.x; acc[ACC_G * np + i] = total.y; acc[ACC_B * np + i] = total.z;
+  acc[ACC_BLOCK_R * np + i] = block.x; acc[ACC_BLOCK_G * np + i] = block.y; acc[ACC_BLOCK_B * np + i] = block.z;
+  for (int r = 0; r < REPLICATES; ++r) {
+    acc[(ACC_LUM + r) * np + i] = lum_total[r];
+    acc[(ACC_BLOCK_LUM + r) * np + i] = lum_block[r];
+  }
+}
+
 __kernel void ibl_exact(__global const float* restrict gb, int width, int height, brdfcl_camera cam,
                         __global const float* restrict env, int env_w, int env_h, float env_rotation,
                         __global const float* restrict env_rows, __global const float* restrict env_cols,
@@ -112,21 +171,9 @@ __kernel void ibl_exact(__global const float* restrict gb, int width, int height
   const vec3w Vc = lanes3(frame_local(V, px.Tc, px.Bc, px.Nc));
   const float NdotV = dot(N, V);
 
-  /* Technique probabilities: the environment's share comes from the host (large for a peaked
-     environment such as a sun, 0 for a uniform one, where BRDF sampling alone is best); the rest
-     is split between the lobes as `brdfcl sample` splits it at this view (sample.cl). */
-  float plobe[LOBE_COUNT];
-  lobe_probabilities(m, NdotV, sheen_e, sheen_e_size, plobe);
   const float p_env = env_share;
   float p[TECH_COUNT], cdf[TECH_COUNT];
-  float run = 0.0f;
-  for (int t = 0; t < TECH_ENV; ++t) {
-    p[t] = (1.0f - p_env) * plobe[t];
-    run += p[t];
-    cdf[t] = run;
-  }
-  p[TECH_ENV] = p_env;
-  cdf[TECH_ENV] = 1.0f;
+  technique_probabilities(m, NdotV, sheen_e, sheen_e_size, p_env, p, cdf);
 
   const uint scramble = hash_u32((uint)i * 0x9e3779b9u + 0x632be5abu + hash_u32(seed));
   uint rot1[REPLICATES], rot2[REPLICATES];
@@ -135,33 +182,14 @@ __kernel void ibl_exact(__global const float* restrict gb, int width, int height
     rot2[r] = hash_u32(scramble ^ (2u * (uint)r + 2u));
   }
 
-  float3 total = (float3)(0.0f), block = (float3)(0.0f);
+  float3 total, block;
   float lum_total[REPLICATES], lum_block[REPLICATES];
-  for (int r = 0; r < REPLICATES; ++r) lum_total[r] = lum_block[r] = 0.0f;
-  if (sample_begin > 0) {
-    total = (float3)(acc[ACC_R * np + i], acc[ACC_G * np + i], acc[ACC_B * np + i]);
-    block = (float3)(acc[ACC_BLOCK_R * np + i], acc[ACC_BLOCK_G * np + i], acc[ACC_BLOCK_B * np + i]);
-    for (int r = 0; r < REPLICATES; ++r) {
-      lum_total[r] = acc[(ACC_LUM + r) * np + i];
-      lum_block[r] = acc[(ACC_BLOCK_LUM + r) * np + i];
-    }
-  }
+  acc_load(acc, np, i, sample_begin, &total, &block, lum_total, lum_block);
   for (int k = sample_begin; k < sample_end; ++k) {
     const int rep = k % REPLICATES;
     const uint j = (uint)(k / REPLICATES);
     float u1 = r2_dim(j, 3242174889u, rot1[rep]), u2 = r2_dim(j, 2447445414u, rot2[rep]);
-    /* The technique whose interval of the CDF holds u1; u1 rescaled to [0, 1) within it. A share
-       left by float rounding above the last lobe goes to the cosine hemisphere (always present) when
-       the environment has none. */
-    int tech = 0;
-    while (tech < TECH_ENV && !(u1 < cdf[tech] && p[tech] > 0.0f)) ++tech;
-    if (tech == TECH_ENV && p_env <= 0.0f) {
-      tech = TECH_DIFFUSE;
-      u1 = 0.5f;
-    } else {
-      float lo = cdf[tech] - p[tech];
-      u1 = clamp((u1 - lo) / p[tech], 0.0f, 0.99999994f);
-    }
+    const int tech = choose_technique(p, cdf, p_env, &u1);
     /* The coat samples in its own frame (its normal may differ from N); the other lobes in N's. */
     float3 L;
     if (tech == TECH_COAT) {
@@ -203,10 +231,5 @@ __kernel void ibl_exact(__global const float* restrict gb, int width, int height
       }
     }
   }
-  acc[ACC_R * np + i] = total.x; acc[ACC_G * np + i] = total.y; acc[ACC_B * np + i] = total.z;
-  acc[ACC_BLOCK_R * np + i] = block.x; acc[ACC_BLOCK_G * np + i] = block.y; acc[ACC_BLOCK_B * np + i] = block.z;
-  for (int r = 0; r < REPLICATES; ++r) {
-    acc[(ACC_LUM + r) * np + i] = lum_total[r];
-    acc[(ACC_BLOCK_LUM + r) * np + i] = lum_block[r];
-  }
+  acc_store(acc, np, i, total, block, lum_total, lum_block);
 }

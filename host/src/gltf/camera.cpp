@@ -9,19 +9,20 @@
 #include "brdfcl/error.hpp"
 #include "brdfcl/gltf_render.hpp"
 #include "io/option_style.hpp"
+#include "io/vec3.hpp"
 
 namespace brdfcl::gltf {
 namespace {
 
-using Vec3 = std::array<double, 3>;
+using Imath::V3d;
+using ::brdfcl::detail::norm;
+using ::brdfcl::detail::toArray;
+using ::brdfcl::detail::toVec3;
 
-Vec3 normalized(const Vec3& v) {
-  const double len = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-  return len > 0.0 ? Vec3{v[0] / len, v[1] / len, v[2] / len} : v;
-}
-double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-Vec3 cross(const Vec3& a, const Vec3& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+// v / |v|, or v itself when it has no length.
+V3d normalized(const V3d& v) {
+  const double len = norm(v);
+  return len > 0.0 ? v / len : v;
 }
 
 constexpr double kPi = 3.14159265358979323846;
@@ -52,11 +53,9 @@ const Camera* findCamera(const Asset& asset, const std::string& arg) {
 View autoView(const Asset& asset, int width, int height) {
   View v;
   v.description = "auto";
-  const Vec3 centre{0.5 * (asset.boundsMin[0] + asset.boundsMax[0]), 0.5 * (asset.boundsMin[1] + asset.boundsMax[1]),
-                    0.5 * (asset.boundsMin[2] + asset.boundsMax[2])};
-  const Vec3 half{0.5 * (asset.boundsMax[0] - asset.boundsMin[0]), 0.5 * (asset.boundsMax[1] - asset.boundsMin[1]),
-                  0.5 * (asset.boundsMax[2] - asset.boundsMin[2])};
-  double radius = std::sqrt(dot(half, half));
+  const V3d lo = toVec3(asset.boundsMin), hi = toVec3(asset.boundsMax);
+  const V3d centre = 0.5 * (lo + hi), half = 0.5 * (hi - lo);
+  double radius = norm(half);
   if (!(radius > 0.0) || !std::isfinite(radius)) radius = 1.0;
   v.aspect = static_cast<double>(width) / height;
   v.tanHalfFovY = std::tan(0.5 * kAutoYFov);
@@ -64,11 +63,12 @@ View autoView(const Asset& asset, int width, int height) {
   const double halfX = std::atan(v.tanHalfFovY * v.aspect);
   const double halfAngle = std::min(0.5 * kAutoYFov, halfX);
   const double distance = kAutoMargin * radius / std::sin(halfAngle);
-  const Vec3 toEye = normalized({1.0, 0.6, 1.0});
-  v.position = {centre[0] + distance * toEye[0], centre[1] + distance * toEye[1], centre[2] + distance * toEye[2]};
-  v.forward = {-toEye[0], -toEye[1], -toEye[2]};
-  v.right = normalized(cross(v.forward, {0.0, 1.0, 0.0}));
-  v.up = cross(v.right, v.forward);
+  const V3d toEye = normalized(V3d(1.0, 0.6, 1.0));
+  const V3d forward = -toEye, right = normalized(forward % V3d(0.0, 1.0, 0.0));
+  v.position = toArray(centre + distance * toEye);
+  v.forward = toArray(forward);
+  v.right = toArray(right);
+  v.up = toArray(right % forward);
   v.znear = 1e-3 * radius;
   v.zfar = 0.0;
   return v;
@@ -85,12 +85,13 @@ View chooseView(const Asset& asset, const std::string& cameraArg, int width, int
   View v;
   const Mat4& m = cam->world;
   // The columns carry the node's scale, which a camera frame ignores; shear is removed too.
-  const Vec3 x = normalized({m[0], m[1], m[2]});
-  const Vec3 z = normalized({m[8], m[9], m[10]});
-  v.forward = {-z[0], -z[1], -z[2]};
-  v.right = normalized({x[0] - dot(x, z) * z[0], x[1] - dot(x, z) * z[1], x[2] - dot(x, z) * z[2]});
-  v.up = cross(z, v.right);
-  if (!(dot(v.right, v.right) > 0.5) || !(dot(z, z) > 0.5))
+  const V3d x = normalized(V3d(m[0], m[1], m[2]));
+  const V3d z = normalized(V3d(m[8], m[9], m[10]));
+  const V3d right = normalized(x - (x ^ z) * z);
+  v.forward = toArray(-z);
+  v.right = toArray(right);
+  v.up = toArray(z % right);
+  if (!((right ^ right) > 0.5) || !((z ^ z) > 0.5))
     throw Error("cameras[" + std::to_string(cam->index) + "] (node " + std::to_string(cam->node) +
                 "): the world matrix has a degenerate rotation; the camera has no view direction");
   v.position = {m[12], m[13], m[14]};

@@ -15,8 +15,13 @@
 #include "brdfcl/gltf_render.hpp"
 #include "gltf/surface.hpp"
 #include "gltf/texture.hpp"
+#include "io/vec3.hpp"
 
 namespace brdfcl::gltf {
+
+using ::brdfcl::detail::norm;
+using ::brdfcl::detail::toVec3;
+
 namespace {
 
 // Embree hands the filter the context it was given, so the cone travels with each ray.
@@ -166,31 +171,24 @@ void primaryRays(const View& view, int width, int height, float jx, float jy, in
                  int valid[16], float dirs[16][3]) {
   const double aspect = view.aspect;
   const double ext = view.orthographic ? view.halfHeight : view.tanHalfFovY;
-  const auto& f = view.forward;
-  const auto& r = view.right;
-  const auto& u = view.up;
+  const Imath::V3d f = toVec3(view.forward), r = toVec3(view.right), u = toVec3(view.up), p = toVec3(view.position);
   const float inf = std::numeric_limits<float>::infinity();
   for (int lane = 0; lane < 16; ++lane) {
     const int x = x0 + lane % 4, y = y0 + lane / 4;
     valid[lane] = x < width && y < height ? -1 : 0;
     const double s = 2.0 * (x + jx) / width - 1.0, t = 1.0 - 2.0 * (y + jy) / height;
-    double o[3], d[3];
-    for (int k = 0; k < 3; ++k) {
-      if (view.orthographic) {
-        o[k] = view.position[k] + s * ext * aspect * r[k] + t * ext * u[k];
-        d[k] = f[k];
-      } else {
-        o[k] = view.position[k];
-        d[k] = f[k] + s * ext * aspect * r[k] + t * ext * u[k];
-      }
+    Imath::V3d o, d;
+    if (view.orthographic) {
+      o = p + s * ext * aspect * r + t * ext * u;
+      d = f;
+    } else {
+      o = p;
+      d = f + s * ext * aspect * r + t * ext * u;
     }
-    const double len = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-    for (int k = 0; k < 3; ++k) {
-      d[k] /= len;
-      dirs[lane][k] = static_cast<float>(d[k]);
-    }
+    d /= norm(d);
+    for (int k = 0; k < 3; ++k) dirs[lane][k] = static_cast<float>(d[k]);
     // Distances along the ray to the near and far planes, which are perpendicular to forward.
-    const double cosF = d[0] * f[0] + d[1] * f[1] + d[2] * f[2];
+    const double cosF = d ^ f;
     rh.ray.org_x[lane] = static_cast<float>(o[0]);
     rh.ray.org_y[lane] = static_cast<float>(o[1]);
     rh.ray.org_z[lane] = static_cast<float>(o[2]);
@@ -264,8 +262,8 @@ void Raycaster::trace(const View& view, int width, int height, float jx, float j
         h.coneWidth = rc.orthographic ? rc.coneWidth : rh.ray.tfar[lane] * rc.coneSpread;
         const SurfacePoint sp = st.surfaces->evaluate(h);
         if (!view.orthographic) {
-          const double e[3] = {view.position[0] - sp.P[0], view.position[1] - sp.P[1], view.position[2] - sp.P[2]};
-          const double el = std::sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]);
+          const Imath::V3d e = toVec3(view.position) - Imath::V3d(toVec3(sp.P));
+          const double el = norm(e);
           if (el > 0.0 && std::isfinite(el))
             for (int k = 0; k < 3; ++k) V[k] = static_cast<float>(e[k] / el);
         }

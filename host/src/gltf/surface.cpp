@@ -6,38 +6,33 @@
 #include <algorithm>
 #include <cmath>
 
+#include "io/vec3.hpp"
+
 namespace brdfcl::gltf {
 namespace {
 
-struct V3 {
-  float x = 0, y = 0, z = 0;
-};
-V3 operator+(V3 a, V3 b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
-V3 operator-(V3 a, V3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-V3 operator-(V3 a) { return {-a.x, -a.y, -a.z}; }
-V3 operator*(float s, V3 a) { return {s * a.x, s * a.y, s * a.z}; }
-float dot(V3 a, V3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-V3 cross(V3 a, V3 b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
-float length(V3 a) { return std::sqrt(dot(a, a)); }
+using V3 = Imath::V3f;
+using brdfcl::detail::norm;
+using brdfcl::detail::toArray;
+using brdfcl::detail::toVec3;
+
 // Unit vector, or false for a zero, tiny or non-finite input.
 bool normalize(V3& a) {
-  const float len = length(a);
+  const float len = norm(a);
   if (!(len > 1e-20f) || !std::isfinite(len)) return false;
   a = (1.0f / len) * a;
   return true;
 }
-std::array<float, 3> arr(V3 a) { return {a.x, a.y, a.z}; }
-V3 vec(const std::array<float, 3>& a) { return {a[0], a[1], a[2]}; }
 float clamp01(float x) { return std::clamp(x, 0.0f, 1.0f); }  // NaN stays NaN; factors are finite
 
-V3 vertex3(const std::vector<float>& a, std::uint32_t i) { return {a[3 * i], a[3 * i + 1], a[3 * i + 2]}; }
+V3 vertex3(const std::vector<float>& a, std::uint32_t i) { return V3(a[3 * i], a[3 * i + 1], a[3 * i + 2]); }
 
 // T perpendicular to N (unit N); the frame of docs/gbuffer.md when T is missing or parallel to N.
 V3 orthoTangent(V3 T, V3 N) {
-  V3 t = T - dot(N, T) * N;
+  V3 t = T - (N ^ T) * N;
   if (normalize(t)) return t;
-  const V3 b0 = std::fabs(N.y) > 0.999f ? V3{1, 0, 0} : V3{0, 1, 0};
-  t = cross(b0, N);
+  const V3 b0 = std::fabs(N.y) > 0.999f ? V3(1, 0, 0) : V3(0, 1, 0);
+  t = b0 % N;
   normalize(t);
   return t;
 }
@@ -62,9 +57,9 @@ Triangle triangle(const Primitive& p, const Hit& h) {
   t.p2 = vertex3(p.positions, t.i2);
   t.e1 = t.p1 - t.p0;
   t.e2 = t.p2 - t.p0;
-  t.Ng = cross(t.e1, t.e2);
-  t.area2 = length(t.Ng);
-  if (!normalize(t.Ng)) t.Ng = -vec(h.dir);
+  t.Ng = t.e1 % t.e2;
+  t.area2 = norm(t.Ng);
+  if (!normalize(t.Ng)) t.Ng = -toVec3(h.dir);
   return t;
 }
 
@@ -111,8 +106,8 @@ bool Surfaces::accepts(const Hit& h) const {
   const Material& m = material(h.prim);
   const Primitive& p = asset_.primitives[h.prim];
   const Triangle t = triangle(p, h);
-  const V3 dir = vec(h.dir);
-  const float cosTheta = dot(t.Ng, dir);
+  const V3 dir = toVec3(h.dir);
+  const float cosTheta = t.Ng ^ dir;
   if (!m.doubleSided && cosTheta > 0.0f) return false;
   if (m.alphaMode == AlphaMode::Opaque) return true;
   float alpha = clamp01(m.baseColorFactor[3]);
@@ -176,10 +171,10 @@ Frame hitFrame(const Material& m, const Primitive& p, const Triangle& t, const U
 
   // Tangent and bitangent sign: TANGENT, else +u and -v (image up, the normal map's +Y) of the
   // hit triangle's UV set that the normal map reads.
-  V3 T{0, 0, 0};
+  V3 T(0, 0, 0);
   float w = 1.0f;
   if (p.tangents.size() >= 4 * vc) {
-    const auto tan4 = [&](std::uint32_t i) { return V3{p.tangents[4 * i], p.tangents[4 * i + 1], p.tangents[4 * i + 2]}; };
+    const auto tan4 = [&](std::uint32_t i) { return V3(p.tangents[4 * i], p.tangents[4 * i + 1], p.tangents[4 * i + 2]); };
     T = t.b0 * tan4(t.i0) + t.b1 * tan4(t.i1) + t.b2 * tan4(t.i2);
     w = p.tangents[4 * t.i0 + 3] < 0.0f ? -1.0f : 1.0f;
   } else {
@@ -199,7 +194,7 @@ Frame hitFrame(const Material& m, const Primitive& p, const Triangle& t, const U
     if (uv.present && std::fabs(det) > 0.0f) {
       T = (1.0f / det) * (dv2 * t.e1 - dv1 * t.e2);
       const V3 dPdv = (1.0f / det) * (du1 * t.e2 - du2 * t.e1);
-      w = dot(cross(N, T), -dPdv) < 0.0f ? -1.0f : 1.0f;
+      w = ((N % T) ^ -dPdv) < 0.0f ? -1.0f : 1.0f;
     }
   }
   // Double-sided back faces are shaded from behind: the whole frame turns to the viewer
@@ -211,13 +206,13 @@ Frame hitFrame(const Material& m, const Primitive& p, const Triangle& t, const U
     w = -w;
   }
   T = orthoTangent(T, N);
-  return {N, T, w * cross(N, T), w};
+  return {N, T, w * (N % T), w};
 }
 
 // The normal a normal map gives in `frame`, or the frame's normal where the texel has none.
 V3 mapNormal(const TextureRef& ref, const Frame& frame, HitSampler& sample) {
   const std::array<float, 4> c = sample(ref, ColorSpace::Linear);
-  V3 n{(2.0f * c[0] - 1.0f) * ref.value, (2.0f * c[1] - 1.0f) * ref.value, 2.0f * c[2] - 1.0f};
+  V3 n((2.0f * c[0] - 1.0f) * ref.value, (2.0f * c[1] - 1.0f) * ref.value, 2.0f * c[2] - 1.0f);
   if (!normalize(n)) return frame.N;
   V3 mapped = n.x * frame.T + n.y * frame.B + n.z * frame.N;
   return normalize(mapped) ? mapped : frame.N;
@@ -277,19 +272,19 @@ SurfacePoint Surfaces::evaluate(const Hit& h) const {
   const Primitive& p = asset_.primitives[h.prim];
   const std::size_t vc = p.vertexCount();
   const Triangle t = triangle(p, h);
-  const V3 dir = vec(h.dir);
+  const V3 dir = toVec3(h.dir);
   SurfacePoint s;
-  s.P = arr(t.b0 * t.p0 + t.b1 * t.p1 + t.b2 * t.p2);
+  s.P = toArray(t.b0 * t.p0 + t.b1 * t.p1 + t.b2 * t.p2);
 
-  const float cosTheta = dot(t.Ng, dir);
+  const float cosTheta = t.Ng ^ dir;
   const float footprint = std::log2(h.coneWidth / std::max(std::fabs(cosTheta), 1e-4f));
   const Uv uvs[2] = {uvSet(p.uv0, t, vc, footprint), uvSet(p.uv1, t, vc, footprint)};
   HitSampler sample(textures_, uvs);
   const Frame frame = hitFrame(m, p, t, uvs, cosTheta);
 
   const V3 Nmapped = m.normalTexture.present() ? mapNormal(m.normalTexture, frame, sample) : frame.N;
-  s.N = arr(Nmapped);
-  s.clearcoatN = arr(m.clearcoatNormalTexture.present() ? mapNormal(m.clearcoatNormalTexture, frame, sample) : frame.N);
+  s.N = toArray(Nmapped);
+  s.clearcoatN = toArray(m.clearcoatNormalTexture.present() ? mapNormal(m.clearcoatNormalTexture, frame, sample) : frame.N);
   baseLayer(s, m, p, t, sample);
   extensionLayers(s, m, sample);
 
@@ -304,7 +299,7 @@ SurfacePoint Surfaces::evaluate(const Hit& h) const {
     s.anisotropyStrength *= c[2];
   }
   s.anisotropyRotation = frame.w * rotation;
-  s.T = arr(orthoTangent(frame.T, Nmapped));
+  s.T = toArray(orthoTangent(frame.T, Nmapped));
   return s;
 }
 

@@ -8,36 +8,30 @@
 #include <cstdint>
 #include <vector>
 
+#include "io/vec3.hpp"
+
 namespace brdfcl::gltf::detail {
 namespace {
 
-using V3 = std::array<double, 3>;
+using V3 = Imath::V3d;
 
-V3 sub(const V3& a, const V3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-V3 add(const V3& a, const V3& b) { return {a[0] + b[0], a[1] + b[1], a[2] + b[2]}; }
-V3 mul(const V3& a, double s) { return {a[0] * s, a[1] * s, a[2] * s}; }
-double dot(const V3& a, const V3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-V3 cross(const V3& a, const V3& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-double length(const V3& a) { return std::sqrt(dot(a, a)); }
 // Unit vector, or zero when a has no usable length.
 V3 unit(const V3& a) {
-  const double l = length(a);
-  return l > 1e-20 && std::isfinite(l) ? mul(a, 1.0 / l) : V3{0, 0, 0};
+  const double l = ::brdfcl::detail::norm(a);
+  return l > 1e-20 && std::isfinite(l) ? a * (1.0 / l) : V3(0, 0, 0);
 }
-bool isZero(const V3& a) { return a[0] == 0 && a[1] == 0 && a[2] == 0; }
+bool isZero(const V3& a) { return a == V3(0, 0, 0); }
 
 // The component of t perpendicular to n (unit), normalized.
-V3 tangentPlane(const V3& t, const V3& n) { return unit(sub(t, mul(n, dot(n, t)))); }
+V3 tangentPlane(const V3& t, const V3& n) { return unit(t - n * (n ^ t)); }
 
 // Any unit vector perpendicular to n: the frame for vertices whose UVs say nothing.
 V3 anyPerpendicular(const V3& n) {
-  const V3 axis = std::fabs(n[0]) < 0.9 ? V3{1, 0, 0} : V3{0, 1, 0};
-  return unit(cross(n, axis));
+  const V3 axis = std::fabs(n.x) < 0.9 ? V3(1, 0, 0) : V3(0, 1, 0);
+  return unit(n % axis);
 }
 
-V3 load3(const std::vector<float>& v, std::size_t i) { return {v[3 * i], v[3 * i + 1], v[3 * i + 2]}; }
+V3 load3(const std::vector<float>& v, std::size_t i) { return V3(v[3 * i], v[3 * i + 1], v[3 * i + 2]); }
 
 // Sums for one vertex and one UV handedness (0: as an unmirrored glTF texture, whose v runs down
 // the image, is laid out: clockwise in (u, v); 1: mirrored).
@@ -49,25 +43,25 @@ struct Sum {
 // Per-vertex normals: the file's, or the corner-angle-weighted face normals when it has none.
 std::vector<V3> vertexNormals(const Primitive& p) {
   const std::size_t n = p.vertexCount();
-  std::vector<V3> out(n, V3{0, 0, 0});
+  std::vector<V3> out(n, V3(0, 0, 0));
   if (!p.normals.empty()) {
     for (std::size_t i = 0; i < n; ++i) out[i] = unit(load3(p.normals, i));
   }
   for (std::size_t t = 0; t + 2 < p.indices.size(); t += 3) {
     const std::uint32_t idx[3] = {p.indices[t], p.indices[t + 1], p.indices[t + 2]};
-    const V3 face = unit(cross(sub(load3(p.positions, idx[1]), load3(p.positions, idx[0])),
-                               sub(load3(p.positions, idx[2]), load3(p.positions, idx[0]))));
+    const V3 face = unit((load3(p.positions, idx[1]) - load3(p.positions, idx[0])) %
+                         (load3(p.positions, idx[2]) - load3(p.positions, idx[0])));
     for (int k = 0; k < 3; ++k)
-      if (p.normals.empty() || isZero(out[idx[k]])) out[idx[k]] = add(out[idx[k]], face);
+      if (p.normals.empty() || isZero(out[idx[k]])) out[idx[k]] = out[idx[k]] + face;
   }
   for (V3& v : out) v = unit(v);
   return out;
 }
 
 double cornerAngle(const V3& at, const V3& a, const V3& b) {
-  const V3 ea = unit(sub(a, at)), eb = unit(sub(b, at));
+  const V3 ea = unit(a - at), eb = unit(b - at);
   if (isZero(ea) || isZero(eb)) return 0.0;
-  const double c = dot(ea, eb);
+  const double c = ea ^ eb;
   return std::acos(c < -1.0 ? -1.0 : c > 1.0 ? 1.0 : c);
 }
 
@@ -102,9 +96,9 @@ void generateTangents(Primitive& p, int uvSet) {
     const double s2 = double(uv[2 * idx[2]]) - uv[2 * idx[0]], t2 = double(uv[2 * idx[2] + 1]) - uv[2 * idx[0] + 1];
     const double area = s1 * t2 - s2 * t1;  // twice the signed UV area
     if (area == 0.0 || !std::isfinite(area)) continue;  // degenerate in UV: no information
-    const V3 e1 = sub(P[1], P[0]), e2 = sub(P[2], P[0]);
-    const V3 T = mul(sub(mul(e1, t2), mul(e2, t1)), 1.0 / area);  // dP/du
-    const V3 B = mul(sub(mul(e2, s1), mul(e1, s2)), 1.0 / area);  // dP/dv
+    const V3 e1 = P[1] - P[0], e2 = P[2] - P[0];
+    const V3 T = (e1 * t2 - e2 * t1) * (1.0 / area);  // dP/du
+    const V3 B = (e2 * s1 - e1 * s2) * (1.0 / area);  // dP/dv
     const int side = area < 0 ? 0 : 1;
     triangleSide[t / 3] = std::uint8_t(side);
     for (int k = 0; k < 3; ++k) {
@@ -113,8 +107,8 @@ void generateTangents(Primitive& p, int uvSet) {
       const double w = cornerAngle(P[k], P[(k + 1) % 3], P[(k + 2) % 3]);
       if (isZero(tp) || !(w > 0.0)) continue;
       Sum& s = sums[idx[k]][side];
-      s.t = add(s.t, mul(tp, w));
-      s.b = add(s.b, mul(unit(B), w));
+      s.t = s.t + tp * w;
+      s.b = s.b + unit(B) * w;
       s.used = true;
     }
   }
@@ -145,9 +139,9 @@ void generateTangents(Primitive& p, int uvSet) {
     const Sum& s = isCopy ? both[1] : (both[0].used ? both[0] : both[1]);
     const V3& nrm = normals[orig];
     V3 t = tangentPlane(s.t, nrm);
-    if (isZero(t)) t = isZero(nrm) ? V3{1, 0, 0} : anyPerpendicular(nrm);
+    if (isZero(t)) t = isZero(nrm) ? V3(1, 0, 0) : anyPerpendicular(nrm);
     // glTF: bitangent = cross(N, T) * w points where the texture's v decreases (image up).
-    const double w = dot(cross(nrm, t), s.b) > 0.0 ? -1.0 : 1.0;
+    const double w = ((nrm % t) ^ s.b) > 0.0 ? -1.0 : 1.0;
     for (int c = 0; c < 3; ++c) p.tangents[4 * v + c] = static_cast<float>(t[c]);
     p.tangents[4 * v + 3] = static_cast<float>(w);
   }

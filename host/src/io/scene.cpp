@@ -24,6 +24,7 @@
 
 #include "brdfcl/error.hpp"
 #include "io/option_style.hpp"
+#include "io/vec3.hpp"
 
 namespace brdfcl {
 namespace {
@@ -37,8 +38,6 @@ std::string withoutTag(std::string what) { return detail::withoutJsonTag(std::mo
 constexpr double kPi = 3.14159265358979323846;
 // Users write pi/2 with a few digits (1.5708); a hair above pi/2 is taken as pi/2.
 constexpr double kHalfPiTolerance = 1e-4;
-
-using Vec3 = std::array<float, 3>;
 
 class SceneReader {
  public:
@@ -107,23 +106,22 @@ class SceneReader {
     return number(v, path, "a finite number", [](double) { return true; });
   }
 
-  Vec3 vec3(const json& v, const std::string& path, bool nonNegative = false) const {
+  std::array<float, 3> vec3(const json& v, const std::string& path, bool nonNegative = false) const {
     const std::string expected =
         std::string("an array of 3 ") + (nonNegative ? "numbers >= 0" : "finite numbers");
     if (!v.is_array() || v.size() != 3) fail(path, "expected " + expected + ", got " + describe(v));
-    Vec3 out{};
+    std::array<float, 3> out{};
     for (std::size_t i = 0; i < 3; ++i)
       out[i] = number(v[i], path + "[" + std::to_string(i) + "]", nonNegative ? "a number >= 0" : "a finite number",
                       [&](double d) { return !nonNegative || d >= 0.0; });
     return out;
   }
 
-  Vec3 unit(const json& v, const std::string& path) const {
-    Vec3 d = vec3(v, path);
-    const double len = std::sqrt(double(d[0]) * d[0] + double(d[1]) * d[1] + double(d[2]) * d[2]);
+  std::array<float, 3> unit(const json& v, const std::string& path) const {
+    const Imath::V3d d(detail::toVec3(vec3(v, path)));
+    const double len = detail::norm(d);
     if (!(len > 0.0) || !std::isfinite(len)) fail(path, "the direction has zero length; give a non-zero vector");
-    for (float& c : d) c = static_cast<float>(c / len);
-    return d;
+    return detail::toArray(Imath::V3f(d / len));
   }
 
   void camera(const json& v, Scene& s) const {

@@ -18,21 +18,14 @@ static_assert(sizeof(brdfcl_camera) == 16 * 4 && offsetof(brdfcl_camera, orthogr
               offsetof(brdfcl_camera, forward) == 48);
 
 namespace detail {
-namespace {
-V3 sub(V3 a, V3 b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-V3 cross(V3 a, V3 b) { return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]}; }
-}  // namespace
 
-V3 normalized(V3 a) {
-  const float l = std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
-  return {a[0] / l, a[1] / l, a[2] / l};
-}
+Imath::V3f normalized(const Imath::V3f& a) { return a / norm(a); }
 
 brdfcl_camera cameraFor(const Scene& s, int w, int h) {
   brdfcl_camera c{};
-  const V3 f = normalized(sub(s.cameraTarget, s.cameraPosition));
-  const V3 worldUp = std::fabs(f[1]) > 0.999f ? V3{0, 0, -1} : V3{0, 1, 0};
-  const V3 r = normalized(cross(f, worldUp)), u = cross(r, f);
+  const Imath::V3f f = normalized(toVec3(s.cameraTarget) - toVec3(s.cameraPosition));
+  const Imath::V3f worldUp = std::fabs(f.y) > 0.999f ? Imath::V3f(0, 0, -1) : Imath::V3f(0, 1, 0);
+  const Imath::V3f r = normalized(f % worldUp), u = r % f;
   for (int i = 0; i < 3; ++i) {
     c.position[i] = s.cameraPosition[i];
     c.right[i] = r[i];
@@ -78,7 +71,7 @@ std::string cameraDifference(const Scene& scene, const GBufferCamera& g) {
   std::vector<std::string> parts;
   auto degrees = [](double cosine) { return std::acos(std::clamp(cosine, -1.0, 1.0)) * 180.0 / M_PI; };
   auto dot3 = [](const float* a, const std::array<float, 3>& b) {
-    return double(a[0]) * b[0] + double(a[1]) * b[1] + double(a[2]) * b[2];
+    return Imath::V3d(a[0], a[1], a[2]) ^ Imath::V3d(detail::toVec3(b));
   };
   double d2 = 0.0, scale2 = 0.0;
   for (int i = 0; i < 3; ++i) {

@@ -13,6 +13,7 @@
 
 #include "brdfcl/error.hpp"
 #include "io/option_style.hpp"
+#include "io/vec3.hpp"
 
 namespace brdfcl::gltf {
 
@@ -20,10 +21,9 @@ Light defaultKeyLight(const View& view) {
   Light key;
   key.type = Light::Type::Directional;
   key.intensity = 3.0f;
-  std::array<double, 3> d{};
-  for (int i = 0; i < 3; ++i) d[i] = 0.5 * view.right[i] - view.up[i] + 0.6 * view.forward[i];
-  const double len = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-  for (int i = 0; i < 3; ++i) key.direction[i] = float(d[i] / len);
+  using ::brdfcl::detail::toVec3;
+  const Imath::V3d d = 0.5 * toVec3(view.right) - toVec3(view.up) + 0.6 * toVec3(view.forward);
+  key.direction = ::brdfcl::detail::toArray(Imath::V3f(d / ::brdfcl::detail::norm(d)));
   return key;
 }
 

@@ -30,7 +30,7 @@ Scene spheresScene() {
   s.fovDegrees = 30.0f;
   Light key;
   key.type = Light::Type::Directional;
-  key.direction = normalized({0.5f, -0.6f, -0.62f});
+  key.direction = detail::toArray(normalized({0.5f, -0.6f, -0.62f}));
   key.intensity = 2.5f;
   key.color = {1.0f, 0.96f, 0.9f};
   Light fill;

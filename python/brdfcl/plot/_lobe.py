@@ -77,36 +77,7 @@ def lobe(materials: MaterialsLike, material: int = 0, *, view_angles: Sequence[f
         axes = [fig.add_subplot(rows, cols, i + 1, projection="polar") for i in range(len(views))]
     what = "f·cosθ_L" + (", luminance" if channel == "luminance" else f", channel {channel.upper()}")
     for k, (a, view) in enumerate(zip(axes, views)):
-        a.set_theta_zero_location("N")
-        a.set_theta_direction(-1)  # positive θ_L to the right, V's side
-        a.set_thetamin(-90)
-        a.set_thetamax(90)
-        peak = float(np.nanmax(arrays["r_all"][k])) if np.any(arrays["r_all"][k] > 0) else 1.0
-        to_radius, ticks, tick_labels = _radial_scale(radius, peak, decades)
-        bottom = np.zeros(n)
-        for lb in LOBES[1:]:
-            r = arrays[f"r_{lb}"][k]
-            if not np.any(r > 0):
-                continue
-            # The bands are stacked in f·cosθ_L and only then mapped to the radius: each band's
-            # outer edge is the sum of the lobes so far, also on the log scale.
-            a.fill_between(tl, to_radius(bottom), to_radius(bottom + r), color=_LOBE_COLOURS[lb], alpha=0.8,
-                           linewidth=0, label=lb)
-            bottom = bottom + r
-        a.plot(tl, to_radius(arrays["r_all"][k]), color="black", linewidth=1.0, label="total")
-        top = float(to_radius(np.array([peak]))[0])
-        a.set_rmax(top * 1.04)
-        a.set_rmin(0)
-        if ticks is not None and tick_labels is not None:
-            a.set_rticks(ticks)
-            a.set_yticklabels(tick_labels)
-        else:
-            a.yaxis.set_major_locator(MaxNLocator(3))  # labels along the baseline: few fit
-        a.set_xlabel("θ_L (degrees); radius f·cosθ_L (1/sr)", fontsize=7, labelpad=-8)
-        a.annotate("V", xy=(math.radians(view), top * 1.04), xytext=(math.radians(view), top * 0.55),
-                   ha="center", va="center", arrowprops={"arrowstyle": "<-", "color": "0.3"}, color="0.3")
-        a.set_title(f"θ_V = {view:g}°", fontsize=9, pad=2)
-        a.tick_params(labelsize=7, pad=1)
+        _draw_view(a, arrays, k, view, tl, radius, decades)
     handles, labels = axes[0].get_legend_handles_labels()
     for a in axes[1:]:
         for h, lab in zip(*a.get_legend_handles_labels()):
@@ -118,6 +89,42 @@ def lobe(materials: MaterialsLike, material: int = 0, *, view_angles: Sequence[f
     fig.suptitle(f"{name}: in-plane {what}, lobes stacked, {scale}\n"
                  f"{_options_text(profile, sheen_visibility, sheen_distribution, sheen_scaling)}", fontsize=10)
     return Plot(fig, arrays)
+
+
+def _draw_view(a: Any, arrays: Dict[str, Any], k: int, view: float, tl: np.ndarray, radius: str,
+               decades: float) -> None:
+    """One view angle's polar axes: the stacked lobes, the total, the radial ticks and V."""
+    n = len(tl)
+    a.set_theta_zero_location("N")
+    a.set_theta_direction(-1)  # positive θ_L to the right, V's side
+    a.set_thetamin(-90)
+    a.set_thetamax(90)
+    peak = float(np.nanmax(arrays["r_all"][k])) if np.any(arrays["r_all"][k] > 0) else 1.0
+    to_radius, ticks, tick_labels = _radial_scale(radius, peak, decades)
+    bottom = np.zeros(n)
+    for lb in LOBES[1:]:
+        r = arrays[f"r_{lb}"][k]
+        if not np.any(r > 0):
+            continue
+        # The bands are stacked in f·cosθ_L and only then mapped to the radius: each band's
+        # outer edge is the sum of the lobes so far, also on the log scale.
+        a.fill_between(tl, to_radius(bottom), to_radius(bottom + r), color=_LOBE_COLOURS[lb], alpha=0.8,
+                       linewidth=0, label=lb)
+        bottom = bottom + r
+    a.plot(tl, to_radius(arrays["r_all"][k]), color="black", linewidth=1.0, label="total")
+    top = float(to_radius(np.array([peak]))[0])
+    a.set_rmax(top * 1.04)
+    a.set_rmin(0)
+    if ticks is not None and tick_labels is not None:
+        a.set_rticks(ticks)
+        a.set_yticklabels(tick_labels)
+    else:
+        a.yaxis.set_major_locator(MaxNLocator(3))  # labels along the baseline: few fit
+    a.set_xlabel("θ_L (degrees); radius f·cosθ_L (1/sr)", fontsize=7, labelpad=-8)
+    a.annotate("V", xy=(math.radians(view), top * 1.04), xytext=(math.radians(view), top * 0.55),
+               ha="center", va="center", arrowprops={"arrowstyle": "<-", "color": "0.3"}, color="0.3")
+    a.set_title(f"θ_V = {view:g}°", fontsize=9, pad=2)
+    a.tick_params(labelsize=7, pad=1)
 
 
 def _radial_scale(radius: str, peak: float, decades: float) -> Tuple[Callable[[np.ndarray], np.ndarray],

@@ -45,6 +45,50 @@ def samples(materials: MaterialsLike, material: int = 0, *, view: Tuple[float, f
     one pooled bin for the rest and one for the samples without a direction).
     """
     m, name = _select(materials, material, strict)
+    theta_v, phi_v, n_theta, n_phi = _check_arguments(lobe, view, count, bins, quadrature)
+    opts: Dict[str, Any] = dict(sheen_visibility=sheen_visibility, sheen_distribution=sheen_distribution,
+                                sheen_scaling=sheen_scaling, profile=profile, device=device)
+    tv, pv = math.radians(theta_v), math.radians(phi_v)
+    V = np.array([math.sin(tv) * math.cos(pv), math.sin(tv) * math.sin(pv), math.cos(tv)])
+    L, pdf, weight = _sample(m, V[None, :], count=int(count), seed=seed, lobe=lobe, **opts)
+
+    theta_edges = np.linspace(0.0, 90.0, n_theta + 1)
+    phi_edges = np.linspace(0.0, 360.0, n_phi + 1)
+    kept = pdf > 0
+    lk = L[kept].astype(np.float64)
+    theta_l = np.degrees(np.arccos(np.clip(lk[:, 2], -1.0, 1.0)))
+    phi_l = np.degrees(np.arctan2(lk[:, 1], lk[:, 0])) % 360.0
+    counts, _, _ = np.histogram2d(theta_l, phi_l, bins=(theta_edges, phi_edges))
+
+    integral, solid = _bin_integrals(m, V, lobe, opts, theta_edges, phi_edges, int(quadrature))
+    expected = count * integral
+    kept_fraction = float(kept.mean())
+    pdf_mass = float(integral.sum())
+
+    big = expected >= 5
+    chi2, dof = _chi2(counts, expected, big, count, kept, pdf_mass)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        density_obs = counts / (count * solid)
+        density_exp = integral / solid
+        ratio = np.where(big, counts / expected, np.nan)
+        residual = np.where(big, (counts - expected) / np.sqrt(expected), np.nan)
+    arrays: Dict[str, Any] = {"theta_edges_deg": theta_edges, "phi_edges_deg": phi_edges, "V": V, "L": L,
+                              "pdf": pdf, "weight": weight, "counts": counts, "expected": expected,
+                              "ratio": ratio, "residual": residual, "solid_angle": solid, "kept": kept_fraction,
+                              "pdf_mass": pdf_mass, "chi2": chi2, "dof": dof}
+
+    fig = _figure(figsize, dpi)
+    _draw(fig, phi_edges, theta_edges, density_obs, density_exp, residual, count, theta_v, phi_v)
+    fig.suptitle(f"{name}: lobe {lobe}, θ_V = {theta_v:g}°, φ_V = {phi_v:g}°; radius θ_L, angle φ_L\n"
+                 f"kept {100 * kept_fraction:.2f} % of samples, ∫pdf = {pdf_mass:.4f}, "
+                 f"χ² = {chi2:.1f} over {dof} degrees of freedom; "
+                 f"{_options_text(profile, sheen_visibility, sheen_distribution, sheen_scaling)}", fontsize=10)
+    return Plot(fig, arrays)
+
+
+def _check_arguments(lobe: str, view: Tuple[float, float], count: int, bins: Tuple[int, int],
+                     quadrature: int) -> Tuple[float, float, int, int]:
+    """samples()'s arguments checked: (θ_V, φ_V) in degrees and the bin counts."""
     if lobe not in LOBES:
         raise InputError(f"lobe must be one of {', '.join(LOBES)}, got {lobe!r}")
     try:
@@ -63,22 +107,15 @@ def samples(materials: MaterialsLike, material: int = 0, *, view: Tuple[float, f
         raise InputError(f"bins must be 2 to 360 theta bins and 4 to 720 phi bins, got {bins!r}")
     if isinstance(quadrature, bool) or not isinstance(quadrature, (int, np.integer)) or not 1 <= quadrature <= 16:
         raise InputError(f"quadrature must be an integer from 1 to 16, got {quadrature!r}")
-    opts: Dict[str, Any] = dict(sheen_visibility=sheen_visibility, sheen_distribution=sheen_distribution,
-                                sheen_scaling=sheen_scaling, profile=profile, device=device)
-    tv, pv = math.radians(theta_v), math.radians(phi_v)
-    V = np.array([math.sin(tv) * math.cos(pv), math.sin(tv) * math.sin(pv), math.cos(tv)])
-    L, pdf, weight = _sample(m, V[None, :], count=int(count), seed=seed, lobe=lobe, **opts)
+    return theta_v, phi_v, n_theta, n_phi
 
-    theta_edges = np.linspace(0.0, 90.0, n_theta + 1)
-    phi_edges = np.linspace(0.0, 360.0, n_phi + 1)
-    kept = pdf > 0
-    lk = L[kept].astype(np.float64)
-    theta_l = np.degrees(np.arccos(np.clip(lk[:, 2], -1.0, 1.0)))
-    phi_l = np.degrees(np.arctan2(lk[:, 1], lk[:, 0])) % 360.0
-    counts, _, _ = np.histogram2d(theta_l, phi_l, bins=(theta_edges, phi_edges))
 
+def _bin_integrals(m: Any, V: np.ndarray, lobe: str, opts: Dict[str, Any], theta_edges: np.ndarray,
+                   phi_edges: np.ndarray, quadrature: int) -> Tuple[np.ndarray, np.ndarray]:
+    """The pdf integrated over each (θ, φ) bin, and the bins' solid angles in sr."""
+    n_theta, n_phi = len(theta_edges) - 1, len(phi_edges) - 1
     # Gauss-Legendre nodes in each bin: pdf x sin θ over (θ, φ) in radians.
-    x, w = np.polynomial.legendre.leggauss(int(quadrature))
+    x, w = np.polynomial.legendre.leggauss(quadrature)
     th_lo, dth = np.radians(theta_edges[:-1]), math.radians(90.0 / n_theta)
     ph_lo, dph = np.radians(phi_edges[:-1]), math.radians(360.0 / n_phi)
     th = (th_lo[:, None] + dth * (x[None, :] + 1) / 2).reshape(-1)  # (nθ q,)
@@ -87,17 +124,18 @@ def samples(materials: MaterialsLike, material: int = 0, *, view: Tuple[float, f
     Lq = np.stack([np.sin(T) * np.cos(P), np.sin(T) * np.sin(P), np.cos(T)], axis=-1).reshape(-1, 3)
     Vq = np.broadcast_to(V.astype(np.float32), Lq.shape)
     pq = _pdf(m, Lq, Vq, lobe=lobe, **opts).astype(np.float64).reshape(T.shape) * np.sin(T)
-    q = int(quadrature)
+    q = quadrature
     wq = np.outer(w, w) * (dth / 2) * (dph / 2)
     integral = (pq.reshape(n_theta, q, n_phi, q) * wq[None, :, None, :]).sum(axis=(1, 3))
     solid = np.outer(np.cos(th_lo) - np.cos(th_lo + dth), np.full(n_phi, dph))
-    expected = count * integral
-    kept_fraction = float(kept.mean())
-    pdf_mass = float(integral.sum())
+    return integral, solid
 
+
+def _chi2(counts: np.ndarray, expected: np.ndarray, big: np.ndarray, count: int, kept: np.ndarray,
+          pdf_mass: float) -> Tuple[float, int]:
+    """Pearson's χ² and its degrees of freedom."""
     # Pearson's χ² over the bins expecting 5 or more, the rest pooled, and the "no direction" cell
     # (expected: what the pdf leaves of 1).
-    big = expected >= 5
     obs = [counts[big]]
     exp = [expected[big]]
     if (~big).any() and expected[~big].sum() > 0:
@@ -110,18 +148,12 @@ def samples(materials: MaterialsLike, material: int = 0, *, view: Tuple[float, f
     o, e = np.concatenate(obs), np.concatenate(exp)
     chi2 = float(((o - e) ** 2 / e).sum())
     dof = max(len(o) - 1, 1)
+    return chi2, dof
 
-    with np.errstate(invalid="ignore", divide="ignore"):
-        density_obs = counts / (count * solid)
-        density_exp = integral / solid
-        ratio = np.where(big, counts / expected, np.nan)
-        residual = np.where(big, (counts - expected) / np.sqrt(expected), np.nan)
-    arrays: Dict[str, Any] = {"theta_edges_deg": theta_edges, "phi_edges_deg": phi_edges, "V": V, "L": L,
-                              "pdf": pdf, "weight": weight, "counts": counts, "expected": expected,
-                              "ratio": ratio, "residual": residual, "solid_angle": solid, "kept": kept_fraction,
-                              "pdf_mass": pdf_mass, "chi2": chi2, "dof": dof}
 
-    fig = _figure(figsize, dpi)
+def _draw(fig: Any, phi_edges: np.ndarray, theta_edges: np.ndarray, density_obs: np.ndarray,
+          density_exp: np.ndarray, residual: np.ndarray, count: int, theta_v: float, phi_v: float) -> None:
+    """The three polar panels: histogram, integrated pdf and residual, with V and its mirror marked."""
     axes = [fig.add_subplot(1, 3, i + 1, projection="polar") for i in range(3)]
     positive = np.concatenate([density_obs[density_obs > 0], density_exp[density_exp > 0]])
     top = float(positive.max()) if positive.size else 1.0
@@ -148,8 +180,3 @@ def samples(materials: MaterialsLike, material: int = 0, *, view: Tuple[float, f
         a.plot([mirror[0]], [mirror[1]], marker="x", color="red", markersize=6, linestyle="none",
                label="mirror of V")
     axes[0].legend(loc="lower left", bbox_to_anchor=(-0.15, -0.15), fontsize=7, frameon=False)
-    fig.suptitle(f"{name}: lobe {lobe}, θ_V = {theta_v:g}°, φ_V = {phi_v:g}°; radius θ_L, angle φ_L\n"
-                 f"kept {100 * kept_fraction:.2f} % of samples, ∫pdf = {pdf_mass:.4f}, "
-                 f"χ² = {chi2:.1f} over {dof} degrees of freedom; "
-                 f"{_options_text(profile, sheen_visibility, sheen_distribution, sheen_scaling)}", fontsize=10)
-    return Plot(fig, arrays)
