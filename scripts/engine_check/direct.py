@@ -5,7 +5,7 @@ import random
 from .common import CheckError, LOBES, progress
 from .sets import edge_set, random_set
 from .compare import print_report, worst_pair
-from .sources import git_info, pins
+from .sources import build_engine, pins
 from .brdfcl import brdfcl_eval, run_engine_exe, sheen_albedo, write_inputs
 from .engines import ENGINES
 from .ibl import check_ibl
@@ -31,14 +31,11 @@ def check(a, work):
         print("%s: no glue in this harness yet, not checked" % ", ".join(unchecked))
     for prof in wanted:
         folder, builder = ENGINES[prof]
-        src = os.path.join(a.sources, folder)
-        if not os.path.isdir(src):
-            print("%s: no %s/ under %s, skipped" % (prof, folder, a.sources))
+        built = build_engine(a, work, prof, folder, builder, prof)
+        if built is None:
             continue
-        exes, files = builder(src, work, a.float64)
-        head, desc, per_file = git_info(src, files)
+        exes, files, per_file = built
         pinned = pins(prof)
-        print("%s: %s at %s" % (prof, folder, ("%s (%s)" % (head[:12], desc)) if head else "no git commit"))
         for p in files:
             pin = pinned.get(os.path.basename(p))
             state = "" if pin is None else (" = pinned %s" % pin if per_file[p].startswith(pin[:7]) or

@@ -9,7 +9,7 @@ import zlib
 from .common import CheckError, progress
 from .sets import edge_set, random_set
 from .compare import print_report, worst_pair
-from .sources import git_info
+from .sources import build_engine
 from .brdfcl import run_engine_exe
 from .engines import ENGINES, IBL_ENGINES
 
@@ -210,14 +210,10 @@ def check_ibl(a, work, wanted):
             print("%s: no image-based-light glue in this harness yet, not checked" % prof)
             continue
         folder, builder = ENGINES[prof][0], IBL_ENGINES[prof]
-        src = os.path.join(a.sources, folder)
-        if not os.path.isdir(src):
-            print("%s: no %s/ under %s, skipped" % (prof, folder, a.sources))
+        built = build_engine(a, work, prof, folder, builder, prof + " (image-based light)")
+        if built is None:
             continue
-        exes, files = builder(src, work, a.float64)
-        head, desc, per_file = git_info(src, files)
-        print("%s (image-based light): %s at %s" % (prof, folder, ("%s (%s)" % (head[:12], desc)) if head
-                                                    else "no git commit"))
+        exes, files, per_file = built
         for p in files:
             print("  %-58s last changed %s" % (p, per_file[p]))
         for tag, (mats, pairs) in sets.items():
