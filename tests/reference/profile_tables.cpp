@@ -24,6 +24,25 @@ constexpr std::uint16_t kThreejsDfgBits[16 * 16 * 2] = {
 #include "../../host/src/model/threejs_dfg_lut.inc"
 };
 
+// One axis of a GPU's bilinear fetch over n texels: coordinate x in texel units measured from
+// texel 0's centre, the two neighbours i0, i1 clamped to the edge (so beyond the outer centres the
+// edge texel is returned), w the weight of i1.
+void clampedTaps(double u, int n, int& i0, int& i1, double& w) {
+  const double x = u * n - 0.5;
+  const double fl = std::floor(x);
+  w = x - fl;
+  i0 = std::clamp(static_cast<int>(fl), 0, n - 1);
+  i1 = std::clamp(static_cast<int>(fl) + 1, 0, n - 1);
+}
+
+// The bilinear blend of the four texels texel(i, j) that clampedTaps picked on each axis.
+template <class Texel>
+double bilinear(const Texel& texel, int i0, int i1, double wu, int j0, int j1, double wv) {
+  const double bottom = texel(i0, j0) * (1.0 - wu) + texel(i1, j0) * wu;
+  const double top = texel(i0, j1) * (1.0 - wu) + texel(i1, j1) * wu;
+  return bottom * (1.0 - wv) + top * wv;
+}
+
 }  // namespace
 
 double halfToDouble(std::uint16_t bits) {
@@ -42,28 +61,17 @@ double halfToDouble(std::uint16_t bits) {
 }
 
 std::array<double, 2> threejsDfg(double roughness, double NdotV) {
-  // A GPU's bilinear fetch: coordinate x in texel units measured from texel 0's centre, the
-  // two neighbours clamped to the edge (so beyond the outer centres the edge texel is returned).
-  auto split = [](double u, int& i0, int& i1, double& w) {
-    const double x = u * 16.0 - 0.5;
-    const double fl = std::floor(x);
-    w = x - fl;
-    i0 = std::clamp(static_cast<int>(fl), 0, 15);
-    i1 = std::clamp(static_cast<int>(fl) + 1, 0, 15);
-  };
+  // A GPU's bilinear fetch (clampedTaps on each axis) of the 16 x 16 texels.
   int i0, i1, j0, j1;
   double wu, wv;
-  split(roughness, i0, i1, wu);
-  split(NdotV, j0, j1, wv);
+  clampedTaps(roughness, 16, i0, i1, wu);
+  clampedTaps(NdotV, 16, j0, j1, wv);
   auto texel = [](int i, int j, int ch) {
     return halfToDouble(kThreejsDfgBits[(j * 16 + i) * 2 + ch]);
   };
   std::array<double, 2> out{};
-  for (int ch = 0; ch < 2; ++ch) {
-    const double bottom = texel(i0, j0, ch) * (1.0 - wu) + texel(i1, j0, ch) * wu;
-    const double top = texel(i0, j1, ch) * (1.0 - wu) + texel(i1, j1, ch) * wu;
-    out[ch] = bottom * (1.0 - wv) + top * wv;
-  }
+  for (int ch = 0; ch < 2; ++ch)
+    out[ch] = bilinear([&](int i, int j) { return texel(i, j, ch); }, i0, i1, wu, j0, j1, wv);
   return out;
 }
 
@@ -90,22 +98,13 @@ const std::vector<unsigned char>& khronosTexels() {
 double khronosSheenE(double NdotV, double sheenRoughness) {
   // texture(u_SheenELUT, vec2(N.V, r_s)).r with LINEAR and CLAMP_TO_EDGE: texel centres at
   // (i + 0.5)/1024, neighbours clamped to the edge; each texel unorm8 / 255.
-  auto split = [](double u, int& i0, int& i1, double& w) {
-    const double x = u * kKhronosN - 0.5;
-    const double fl = std::floor(x);
-    w = x - fl;
-    i0 = std::clamp(static_cast<int>(fl), 0, kKhronosN - 1);
-    i1 = std::clamp(static_cast<int>(fl) + 1, 0, kKhronosN - 1);
-  };
   int i0, i1, j0, j1;
   double wu, wv;
-  split(NdotV, i0, i1, wu);
-  split(sheenRoughness, j0, j1, wv);
+  clampedTaps(NdotV, kKhronosN, i0, i1, wu);
+  clampedTaps(sheenRoughness, kKhronosN, j0, j1, wv);
   const auto& t = khronosTexels();
   auto texel = [&](int i, int j) { return t[std::size_t(j) * kKhronosN + std::size_t(i)] / 255.0; };
-  const double bottom = texel(i0, j0) * (1.0 - wu) + texel(i1, j0) * wu;
-  const double top = texel(i0, j1) * (1.0 - wu) + texel(i1, j1) * wu;
-  return bottom * (1.0 - wv) + top * wv;
+  return bilinear(texel, i0, i1, wu, j0, j1, wv);
 }
 
 namespace {
@@ -133,25 +132,15 @@ const std::vector<double>& babylonTexels() {
 std::array<double, 3> babylonBrdf(double NdotV, double roughness) {
   // texture2D(environmentBrdfSampler, vec2(N.V, r)) with BILINEAR and CLAMP: texel centres at
   // (i + 0.5)/256, neighbours clamped to the edge.
-  auto split = [](double u, int& i0, int& i1, double& w) {
-    const double x = u * kBabylonN - 0.5;
-    const double fl = std::floor(x);
-    w = x - fl;
-    i0 = std::clamp(static_cast<int>(fl), 0, kBabylonN - 1);
-    i1 = std::clamp(static_cast<int>(fl) + 1, 0, kBabylonN - 1);
-  };
   int i0, i1, j0, j1;
   double wu, wv;
-  split(NdotV, i0, i1, wu);
-  split(roughness, j0, j1, wv);
+  clampedTaps(NdotV, kBabylonN, i0, i1, wu);
+  clampedTaps(roughness, kBabylonN, j0, j1, wv);
   const auto& t = babylonTexels();
   auto texel = [&](int i, int j, int ch) { return t[(std::size_t(j) * kBabylonN + std::size_t(i)) * 3 + std::size_t(ch)]; };
   std::array<double, 3> out{};
-  for (int ch = 0; ch < 3; ++ch) {
-    const double bottom = texel(i0, j0, ch) * (1.0 - wu) + texel(i1, j0, ch) * wu;
-    const double top = texel(i0, j1, ch) * (1.0 - wu) + texel(i1, j1, ch) * wu;
-    out[ch] = bottom * (1.0 - wv) + top * wv;
-  }
+  for (int ch = 0; ch < 3; ++ch)
+    out[ch] = bilinear([&](int i, int j) { return texel(i, j, ch); }, i0, i1, wu, j0, j1, wv);
   return out;
 }
 
