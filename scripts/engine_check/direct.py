@@ -1,12 +1,11 @@
 # The direct-light check (the default): runs each engine's evaluator and `brdfcl eval` per lobe on
 # the random and edge sets and prints the report.
-import math
 import os
 import random
 from .common import CheckError, LOBES, progress
 from .sets import edge_set, random_set
-from .compare import describe, metric_line, rel_err
-from .sources import git_info, pins
+from .compare import print_report, worst_pair
+from .sources import build_engine, pins
 from .brdfcl import brdfcl_eval, run_engine_exe, sheen_albedo, write_inputs
 from .engines import ENGINES
 from .ibl import check_ibl
@@ -32,14 +31,11 @@ def check(a, work):
         print("%s: no glue in this harness yet, not checked" % ", ".join(unchecked))
     for prof in wanted:
         folder, builder = ENGINES[prof]
-        src = os.path.join(a.sources, folder)
-        if not os.path.isdir(src):
-            print("%s: no %s/ under %s, skipped" % (prof, folder, a.sources))
+        built = build_engine(a, work, prof, folder, builder, prof)
+        if built is None:
             continue
-        exes, files = builder(src, work, a.float64)
-        head, desc, per_file = git_info(src, files)
+        exes, files, per_file = built
         pinned = pins(prof)
-        print("%s: %s at %s" % (prof, folder, ("%s (%s)" % (head[:12], desc)) if head else "no git commit"))
         for p in files:
             pin = pinned.get(os.path.basename(p))
             state = "" if pin is None else (" = pinned %s" % pin if per_file[p].startswith(pin[:7]) or
@@ -52,25 +48,8 @@ def check(a, work):
             for lobe in LOBES:
                 ours = brdfcl_eval(a.brdfcl, ["--profile", prof, "--lobe", lobe], mj, sc,
                                    os.path.join(work, "%s-%s-%s.csv" % (prof, tag, lobe)))
-                worst, at, nan_bad, nan_at = -1.0, None, 0, None
-                for k, (i, L, V) in enumerate(pairs):
-                    e, o = eng[k][lobe], ours[k]
-                    err = max(rel_err(x, y, a.floor) for x, y in zip(e, o))
-                    if err == math.inf:
-                        nan_bad += 1
-                        nan_at = nan_at or (k, e, o)
-                    elif err > worst:
-                        worst, at = err, (k, e, o)
+                worst, at, nan_bad, nan_at = worst_pair(pairs, [r[lobe] for r in eng], ours, a.floor)
                 results.append((prof, lobe, tag, worst, nan_bad, at, nan_at, pairs, mats))
-    print()
-    print(metric_line(a.floor, a.float64))
-    print("%-9s %-9s %-6s %-10s %s" % ("engine", "lobe", "set", "worst", "at (material; L; V; engine -> brdfcl)"))
-    print("%-9s %-9s %-6s %-10s %s" % ("", "", "", "", "(a second line counts the pairs where only one side is NaN or infinite)"))
-    for prof, lobe, tag, worst, nan_bad, at, nan_at, pairs, mats in results:
-        if at is not None:
-            print("%-9s %-9s %-6s %-10s %s" % (prof, lobe, tag, "%.2e" % worst, describe(at, pairs, mats)))
-        else:
-            print("%-9s %-9s %-6s %-10s" % (prof, lobe, tag, "-"))
-        if nan_bad:
-            print("%-9s %-9s %-6s %-10s %s" % ("", "", "", "%d x inf" % nan_bad, describe(nan_at, pairs, mats)))
+    print_report(a, results, "lobe", 9, "at (material; L; V; engine -> brdfcl)", True,
+                 ["(a second line counts the pairs where only one side is NaN or infinite)"])
     return 0

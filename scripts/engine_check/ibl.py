@@ -1,7 +1,6 @@
 # The image-based-light check (--ibl): the EXR writer and reader, the G-buffer `brdfcl shade`
 # reads, and check_ibl, which runs each engine's IBL code against it and prints the report.
 import json
-import math
 import os
 import random
 import struct
@@ -9,8 +8,8 @@ import subprocess
 import zlib
 from .common import CheckError, progress
 from .sets import edge_set, random_set
-from .compare import metric_line, rel_err
-from .sources import git_info
+from .compare import print_report, worst_pair
+from .sources import build_engine
 from .brdfcl import run_engine_exe
 from .engines import ENGINES, IBL_ENGINES
 
@@ -211,14 +210,10 @@ def check_ibl(a, work, wanted):
             print("%s: no image-based-light glue in this harness yet, not checked" % prof)
             continue
         folder, builder = ENGINES[prof][0], IBL_ENGINES[prof]
-        src = os.path.join(a.sources, folder)
-        if not os.path.isdir(src):
-            print("%s: no %s/ under %s, skipped" % (prof, folder, a.sources))
+        built = build_engine(a, work, prof, folder, builder, prof + " (image-based light)")
+        if built is None:
             continue
-        exes, files = builder(src, work, a.float64)
-        head, desc, per_file = git_info(src, files)
-        print("%s (image-based light): %s at %s" % (prof, folder, ("%s (%s)" % (head[:12], desc)) if head
-                                                    else "no git commit"))
+        exes, files, per_file = built
         for p in files:
             print("  %-58s last changed %s" % (p, per_file[p]))
         for tag, (mats, pairs) in sets.items():
@@ -227,33 +222,8 @@ def check_ibl(a, work, wanted):
                                  {"EC_GGX_DFG": dfg})
             ours = brdfcl_shade_ibl(a.brdfcl, work, "ibl-" + tag, prof, mats, pairs)
             for comp in IBL_COMPONENTS:
-                worst, at, nan_bad, nan_at = -1.0, None, 0, None
-                for k, (i, L, V) in enumerate(pairs):
-                    if not ibl_component(mats[i], comp):
-                        continue
-                    e, o = eng[k]["all"], ours[k]
-                    err = max(rel_err(x, y, a.floor) for x, y in zip(e, o))
-                    if err == math.inf:
-                        nan_bad += 1
-                        nan_at = nan_at or (k, e, o)
-                    elif err > worst:
-                        worst, at = err, (k, e, o)
+                worst, at, nan_bad, nan_at = worst_pair(pairs, [r["all"] for r in eng], ours, a.floor,
+                                                        lambda i: ibl_component(mats[i], comp))
                 results.append((prof, comp, tag, worst, nan_bad, at, nan_at, pairs, mats))
-    print()
-    print(metric_line(a.floor, a.float64))
-    print("%-9s %-10s %-6s %-10s %s" % ("engine", "component", "set", "worst", "at (material; V; engine -> brdfcl)"))
-    for prof, comp, tag, worst, nan_bad, at, nan_at, pairs, mats in results:
-        if at is not None:
-            print("%-9s %-10s %-6s %-10s %s" % (prof, comp, tag, "%.2e" % worst, describe_v(at, pairs, mats)))
-        else:
-            print("%-9s %-10s %-6s %-10s" % (prof, comp, tag, "-"))
-        if nan_bad:
-            print("%-9s %-10s %-6s %-10s %s" % ("", "", "", "%d x inf" % nan_bad, describe_v(nan_at, pairs, mats)))
+    print_report(a, results, "component", 10, "at (material; V; engine -> brdfcl)", False)
     return 0
-
-
-def describe_v(at, pairs, mats):
-    k, e, o = at
-    i, _, V = pairs[k]
-    return "%s; V=(%s); (%s) -> (%s)" % (mats[i].short(), ",".join("%.6g" % c for c in V),
-                                         ",".join("%.6g" % c for c in e), ",".join("%.6g" % c for c in o))

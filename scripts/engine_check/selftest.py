@@ -9,7 +9,7 @@ from .common import CXX_FLAGS, GLUE, f32
 from .glsl import glsl_to_cpp, hook
 from .babylon import babylon_cpp
 from .sets import Mat
-from .compare import rel_err
+from .compare import rel_err, worst_pair
 from .ibl import exr_read, exr_write, write_gbuffer
 
 
@@ -96,6 +96,15 @@ def metric_self_test(expect):
            rel_err(1.0, 1.0 + 2e-4, 0.0), "above the floor it is the relative difference")
     expect(rel_err(math.nan, math.nan) == 0.0 and rel_err(math.nan, 0.0) == math.inf and
            rel_err(math.inf, 1.0) == math.inf and rel_err(math.inf, math.inf) == 0.0, "NaN and infinity")
+    pairs = [(0, (0.0, 0.0, 1.0), (0.0, 0.0, 1.0)), (1, (0.0, 0.0, 1.0), (0.0, 0.0, 1.0)),
+             (0, (0.0, 0.0, 1.0), (0.0, 0.0, 1.0)), (1, (0.0, 0.0, 1.0), (0.0, 0.0, 1.0))]
+    engine = [(1.0, 1.0, 1.0), (2.0, 1.0, 1.0), (math.nan, 1.0, 1.0), (1.0, 4.0, 1.0)]
+    ours = [(1.0, 1.0, 1.0), (1.0, 1.0, 1.0), (1.0, 1.0, 1.0), (1.0, 1.0, math.inf)]
+    expect(worst_pair(pairs, engine, ours, 1e-4) == (0.5, (1, engine[1], ours[1]), 2, (2, engine[2], ours[2])),
+           "the worst pair is the largest finite difference; NaN or infinity on one side are counted apart")
+    expect(worst_pair(pairs, engine, ours, 1e-4, lambda i: i == 0) == (0.0, (0, engine[0], ours[0]), 1,
+                                                                       (2, engine[2], ours[2])),
+           "the worst pair looks only at the materials it is asked about")
 
 
 def exr_self_test(expect):

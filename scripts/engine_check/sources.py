@@ -1,5 +1,6 @@
-# The engine checkouts' files: the git commit each file last changed in (or its blob hash), and
-# the `file@commit` pins of the profile's section of docs/profiles.md.
+# The engine checkouts' files: each engine's evaluator built from its checkout, the git commit each
+# file last changed in (or its blob hash), and the `file@commit` pins of the profile's section of
+# docs/profiles.md.
 import os
 import re
 import subprocess
@@ -39,3 +40,16 @@ def pins(profile):
         return {}
     sec = m.group(0).split("\n\n")[1] if "\n\n" in m.group(0) else m.group(0)
     return {os.path.basename(a): b for a, b in re.findall(r"`?([\w./]+)@([0-9a-f]{7,40})", sec)}
+
+
+def build_engine(a, work, prof, folder, builder, label):
+    """The evaluator of one engine built from its checkout under --sources, the checkout's commit
+    printed after label: (exes, files, per_file), or None (said in a line) where there is no checkout."""
+    src = os.path.join(a.sources, folder)
+    if not os.path.isdir(src):
+        print("%s: no %s/ under %s, skipped" % (prof, folder, a.sources))
+        return None
+    exes, files = builder(src, work, a.float64)
+    head, desc, per_file = git_info(src, files)
+    print("%s: %s at %s" % (label, folder, ("%s (%s)" % (head[:12], desc)) if head else "no git commit"))
+    return exes, files, per_file

@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "support.hpp"
+#include "tempdir_fixture.hpp"
 #include "brdfcl/error.hpp"
 #include "brdfcl/gbuffer.hpp"
 #include "brdfcl/image.hpp"
@@ -39,32 +40,11 @@ using brdfcl::GBuffer;
 // (GoogleTest refuses a suite whose fixture differs between translation units).
 namespace gbuffer_test {
 
-inline std::atomic<int> dirCounter{0};
+using brdfcl::test::readFile;
 
-class TempDir : public ::testing::Test {
+class TempDir : public brdfcl::test::TempDirTest {
  protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() / ("brdfcl-gb-" + std::to_string(::getpid()) + "-" + info->name() + "-" +
-                                        std::to_string(dirCounter++));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override {
-    std::error_code ec;
-    fs::remove_all(dir_, ec);
-  }
-  std::string path(const std::string& name) const { return (dir_ / name).string(); }
-  std::string write(const std::string& name, const std::string& content) const {
-    std::ofstream(path(name), std::ios::binary) << content;
-    return path(name);
-  }
-  std::vector<std::string> listDir() const {
-    std::vector<std::string> names;
-    for (const auto& e : fs::directory_iterator(dir_)) names.push_back(e.path().filename().string());
-    return names;
-  }
-  fs::path dir_;
+  TempDir() : TempDirTest("gb") {}
 };
 
 class Gbuffer : public TempDir {};
@@ -167,11 +147,6 @@ inline void expectSameGBuffer(const GBuffer& a, const GBuffer& b, float relTol) 
     for (std::size_t i = 0; i < va.size(); ++i)
       ASSERT_NEAR(va[i], vb[i], relTol * std::fabs(va[i]) + 1e-7f) << "member " << m << " index " << i;
   }
-}
-
-inline std::string readBytes(const std::string& p) {
-  std::ifstream f(p, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(f), {});
 }
 
 }  // namespace gbuffer_test

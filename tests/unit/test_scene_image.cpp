@@ -83,7 +83,7 @@ TEST_F(Image, PngHasTheRightSize) {
   const int w = 13, h = 7;
   std::vector<float> rgb(3 * w * h, 0.25f);
   brdfcl::writePng(path("o.png"), w, h, rgb, 1.0f);
-  const std::string bytes = readBytes(path("o.png"));
+  const std::string bytes = readFile(path("o.png"));
   ASSERT_GE(bytes.size(), 33u);
   EXPECT_EQ(bytes.substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8));
   EXPECT_EQ(bytes.substr(12, 4), "IHDR");
@@ -103,7 +103,7 @@ TEST_F(Image, PngFailureLeavesNoFile) {
   // An existing file stays untouched when the new write fails.
   write("keep.png", "old");
   EXPECT_THROW(brdfcl::writePng(path("keep.png"), 1, 1, rgb, 0.0f), std::invalid_argument);
-  EXPECT_EQ(readBytes(path("keep.png")), "old");
+  EXPECT_EQ(readFile(path("keep.png")), "old");
   EXPECT_EQ(listDir(), std::vector<std::string>{"keep.png"});
 }
 
