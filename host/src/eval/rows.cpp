@@ -17,6 +17,7 @@
 #include "brdfcl/evaluator.hpp"
 #include "eval/batch.hpp"
 #include "eval/device_array.hpp"
+#include "eval/material_range.hpp"
 #include "eval/row_driver.hpp"
 #include "runtime/opencl.hpp"
 
@@ -133,9 +134,7 @@ std::size_t Evaluator::evaluateTableRows(const std::vector<MaterialParams>& mate
 
 std::size_t Evaluator::evaluateGridRows(const std::vector<MaterialParams>& materials, const Rows& rows, float* rgb,
                                         bool normalize, std::size_t firstMaterial, std::size_t materialCount) {
-  if (firstMaterial > materials.size() || materialCount > materials.size() - firstMaterial)
-    throw Error(fmt::format("internal: materials [{}, {}) of {}", firstMaterial, firstMaterial + materialCount,
-                            materials.size()), 3);
+  checkMaterialRange(firstMaterial, materialCount, materials.size());
   const std::size_t n = rows.count, nm = materialCount;
   if (n == 0 || nm == 0) return n;
   if (!rows.L || !rows.V || !rgb) throw Error("internal: rows without data", 3);

@@ -73,9 +73,13 @@ void Evaluator::drawUniforms(std::uint64_t seed, std::uint64_t firstRow, std::si
 }
 
 namespace {
-SamplingBatch makeSamplingBatch(Runtime& rt, const EvalOptions& options, const std::vector<MaterialParams>& materials,
+// The sheen albedo table is the evaluator's where a material has sheen (or the draft), else a 2x2 dummy.
+SamplingBatch makeSamplingBatch(Runtime& rt, Evaluator& ev, const std::vector<MaterialParams>& materials,
                                 const std::vector<brdfcl_material>& packed, const std::vector<float>& table,
-                                int tableSize, const SheenAlbedoTable* albedo) {
+                                int tableSize) {
+  const EvalOptions& options = ev.options();
+  const FeatureSet features = featuresOf(materials, options.profile);
+  const SheenAlbedoTable* albedo = features.sheen || features.draft ? &ev.sheenAlbedo() : nullptr;
   SamplingBatch s;
   s.tableSize = tableSize;
   const std::vector<float> dummy(4, 0.0f);
@@ -83,7 +87,7 @@ SamplingBatch makeSamplingBatch(Runtime& rt, const EvalOptions& options, const s
   s.albedoSize = albedo ? int(albedo->width) : 2;
   try {
     s.lanes = laneShape(rt.info()).lanes;
-    s.program = rt.opencl().program("sample.cl", materialDefines(options, featuresOf(materials, options.profile)) +
+    s.program = rt.opencl().program("sample.cl", materialDefines(options, features) +
                                                      fmt::format(" -DBRDFCL_W={}", s.lanes));
     const auto& ctx = rt.opencl().context();
     s.materials = cl::Buffer(ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, packed.size() * sizeof(brdfcl_material),
@@ -107,9 +111,7 @@ void Evaluator::sample(const std::vector<MaterialParams>& materials, const std::
   Batch b = prepare(materials);
   checkSampleRows(view, material, u, count, materials.size());
   if (count == 0) return;
-  const FeatureSet features = featuresOf(materials, options_.profile);
-  const SamplingBatch s = makeSamplingBatch(rt_, options_, materials, b.packed, b.table, b.tableSize,
-                                            features.sheen || features.draft ? &sheenAlbedo() : nullptr);
+  const SamplingBatch s = makeSamplingBatch(rt_, *this, materials, b.packed, b.table, b.tableSize);
   try {
     RowDriver run = rowDriver(rt_, s, "sample_rows");
     run.run(count, run.rowsPerLaunch(launchLimit(), 0, 28, 1), {{view, 12}, {u, 12}, {material, 4}}, out, 28,
@@ -145,9 +147,7 @@ void Evaluator::pdf(const std::vector<MaterialParams>& materials, const Samples&
     checkIndex(material, i, materials.size());
   }
   if (count == 0) return;
-  const FeatureSet features = featuresOf(materials, options_.profile);
-  const SamplingBatch s = makeSamplingBatch(rt_, options_, materials, b.packed, b.table, b.tableSize,
-                                            features.sheen || features.draft ? &sheenAlbedo() : nullptr);
+  const SamplingBatch s = makeSamplingBatch(rt_, *this, materials, b.packed, b.table, b.tableSize);
   try {
     RowDriver run = rowDriver(rt_, s, "pdf_rows");
     run.run(count, run.rowsPerLaunch(launchLimit(), 0, 12, 1),
@@ -189,11 +189,9 @@ SampleBatch::SampleBatch(Runtime& rt, Evaluator& ev, const std::vector<MaterialP
   checkSampleRows(view.data(), material.empty() ? nullptr : material.data(), u.data(), n, materials.size());
   if (n > ev.launchLimit())
     throw Error(fmt::format("internal: {} sampling rows exceed one launch ({} at most on this device)", n, ev.launchLimit()), 3);
-  const FeatureSet features = featuresOf(materials, ev.options().profile);
   s_->rt = &rt;
   s_->n = n;
-  s_->s = makeSamplingBatch(rt, ev.options(), materials, b.packedMaterials(), b.sheenAlbedoValues(),
-                            b.sheenAlbedoSize(), features.sheen || features.draft ? &ev.sheenAlbedo() : nullptr);
+  s_->s = makeSamplingBatch(rt, ev, materials, b.packedMaterials(), b.sheenAlbedoValues(), b.sheenAlbedoSize());
   try {
     const auto& ctx = rt.opencl().context();
     s_->view = deviceCopy(ctx, view.data(), 4 * view.size());
