@@ -1,8 +1,8 @@
 // Evaluator::evaluateRows / evaluateTableRows / evaluateGridRows: the caller's rows handed to the
 // row kernels (eval_rows, eval_table_rows, eval_grid_rows in kernels/eval.cl) where they lie, a
 // launch at a time. The device normalizes and checks the rows; only the lowest bad row comes back.
-// CPU devices read and write the caller's pages in place; other devices get the rows through
-// pinned staging, double buffered (eval/staging.hpp).
+// The launches are eval/row_driver.hpp's: CPU devices read and write the caller's pages in place;
+// other devices get the rows through pinned staging, double buffered (eval/staging.hpp).
 #include <algorithm>
 #include <cmath>
 #include <cstdint>

@@ -1,5 +1,6 @@
 // Evaluator::sample / pdf: rows checked on the host, then handed to kernels/sample.cl (sample_rows,
-// pdf_rows) a launch at a time; and the counter-based uniforms of `brdfcl sample --count --seed`.
+// pdf_rows) a launch at a time by eval/row_driver.hpp (copied, or staged on GPUs); the device-resident
+// SampleBatch of the benchmarks; and the counter-based uniforms of `brdfcl sample --count --seed`.
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
