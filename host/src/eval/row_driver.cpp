@@ -113,6 +113,7 @@ void RowDriver::launch(std::size_t rows, std::size_t materials, cl::Event* whole
   if (!resultBytes_) return;
   if (rows_ == Rows::Copied) {
     q_.enqueueReadBuffer(result_.buffer, CL_TRUE, 0, resultBytes_, resultHost_);
+    result_ = Wrapped{};  // read: free it before the next launch allocates its own
     return;
   }
   // A read map/unmap makes the device's writes visible to the host (free on a CPU device).
