@@ -16,6 +16,7 @@
 
 #include "brdfcl/error.hpp"
 #include "eval/batch.hpp"
+#include "eval/material_range.hpp"
 #include "model/pack.hpp"
 #include "model/engine_tables.hpp"
 #include "runtime/opencl.hpp"
@@ -362,9 +363,7 @@ std::vector<float> Evaluator::evaluateGrid(const std::vector<MaterialParams>& ma
 
 std::vector<float> Evaluator::evaluateGrid(const std::vector<MaterialParams>& materials, const Samples& samples,
                                            std::size_t firstMaterial, std::size_t materialCount) {
-  if (firstMaterial > materials.size() || materialCount > materials.size() - firstMaterial)
-    throw Error(fmt::format("internal: materials [{}, {}) of {}", firstMaterial, firstMaterial + materialCount,
-                            materials.size()), 3);
+  checkMaterialRange(firstMaterial, materialCount, materials.size());
   std::vector<float> rgb(3 * samples.size() * materialCount);
   evaluateGrid(materials, samples, firstMaterial, materialCount, rgb.data());
   return rgb;

@@ -7,6 +7,7 @@
 
 #include "devices/device_set.hpp"
 #include "brdfcl/error.hpp"
+#include "eval/material_range.hpp"
 
 namespace brdfcl {
 
@@ -74,9 +75,7 @@ std::vector<float> MultiEvaluator::evaluateGrid(const std::vector<MaterialParams
 
 std::vector<float> MultiEvaluator::evaluateGrid(const std::vector<MaterialParams>& materials, const Samples& samples,
                                                 std::size_t firstMaterial, std::size_t materialCount) {
-  if (firstMaterial > materials.size() || materialCount > materials.size() - firstMaterial)
-    throw Error(fmt::format("internal: materials [{}, {}) of {}", firstMaterial, firstMaterial + materialCount,
-                            materials.size()), 3);
+  checkMaterialRange(firstMaterial, materialCount, materials.size());
   checkSamples(samples, materials.size(), false);
   const std::size_t n = samples.size();
   std::vector<float> rgb(3 * n * materialCount);
