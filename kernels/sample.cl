@@ -197,7 +197,7 @@ BRDF_FN realw mixture_pdf(const realw p[LOBE_COUNT], const material_lanes m, vec
    own inversion runs where a lane chose it. */
 BRDF_FN vec3w lobe_sample(intw t, const material_lanes m, vec3w V, realw u1, realw u2) {
   const intw spec = t == LOBE_SPECULAR, ggx = spec | (t == LOBE_COAT), sheen = t == LOBE_SHEEN;
-  const intw uniform = t == LOBE_UNIFORM, hemi = (t == LOBE_DIFFUSE) | uniform;
+  const intw unif = t == LOBE_UNIFORM, hemi = (t == LOBE_DIFFUSE) | unif;
   const realw zero = (realw)(0.0f), one = (realw)(1.0f);
   realw rc = select(one, m.aniso_cos, spec), rs = select(zero, m.aniso_sin, spec);
   realw ax = select(one, select(m.clearcoat_alpha, m.alpha_t, spec), ggx);
@@ -205,8 +205,8 @@ BRDF_FN vec3w lobe_sample(intw t, const material_lanes m, vec3w V, realw u1, rea
   vec3w Va = {V.x * rc + V.y * rs, V.y * rc - V.x * rs, V.z};
   realw c, sn = sincos_2pi(select(u2, u1, ggx), &c);
   /* The hemispheres: Malley's (cosine) or uniform in z. */
-  realw z = select(sqrt(max(1.0f - u1, zero)), u1, uniform);
-  realw st = select(sqrt(u1), sqrt(max(1.0f - u1 * u1, zero)), uniform);
+  realw z = select(sqrt(max(1.0f - u1, zero)), u1, unif);
+  realw st = select(sqrt(u1), sqrt(max(1.0f - u1 * u1, zero)), unif);
   vec3w Vh = {zero, zero, zero};
   if (ANYW(ggx)) {
     /* Eto & Tokuyoshi's bounded cap (SampleGGXVNDFBounded). */
