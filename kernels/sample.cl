@@ -7,6 +7,12 @@
 #include "brdf/sampling.h"
 #include "common/rows.h"
 
+/* A batch of one material (BRDFCL_ONE_MATERIAL, set by the host): every index is 0, so the
+   material is read once for all lanes instead of gathered field by field. */
+#ifndef BRDFCL_ONE_MATERIAL
+#define BRDFCL_ONE_MATERIAL 0
+#endif
+
 /* The sheen sampler follows the spec's distribution for the batch's options: Ashikhmin's only
    where --sheen-distribution ashikhmin applies (profile spec, ratified lanes). */
 #if BRDFCL_PROFILE == BRDFCL_PROFILE_SPEC && BRDFCL_SHEEN_DIST == BRDFCL_SHEEN_DIST_ASHIKHMIN
@@ -111,8 +117,8 @@ BRDF_FN void lobe_probabilities(const material_lanes m, realw NdotV, __global co
   w[LOBE_UNIFORM] = W_sheen * (1.0f - K_sheen) * to_uniform;
   w[LOBE_DIFFUSE] = W_diffuse + W_spec * (1.0f - K_spec) + W_sheen * (1.0f - K_sheen) * (1.0f - to_uniform) +
                     W_coat * (1.0f - K_coat) + 0.01f;
-  realw total = w[0] + w[1] + w[2] + w[3] + w[4];
-  for (int t = 0; t < LOBE_COUNT; ++t) p[t] = w[t] / total;
+  realw inv_total = 1.0f / (w[0] + w[1] + w[2] + w[3] + w[4]);
+  for (int t = 0; t < LOBE_COUNT; ++t) p[t] = w[t] * inv_total;
 }
 
 /* Each lane's lobe for u3: the first lobe present whose interval of the running sum of p holds
@@ -164,44 +170,88 @@ BRDF_FN realw lobe_pdf(int t, const material_lanes m, vec3w L, vec3w V) {
 /* The mixture's pdf, sum over lobes of p_t pdf_t(L) (Veach 1997, section 9.2.4): the density the
    one-sample estimator divides by. A lobe no lane uses is skipped. */
 BRDF_FN realw mixture_pdf(const realw p[LOBE_COUNT], const material_lanes m, vec3w L, vec3w V) {
+  if (BRDFCL_LOBE != BRDFCL_LOBE_ALL) return lobe_pdf(LOBE_OF_OPTION, m, L, V);
   realw pdf = (realw)(0.0f);
-  for (int t = 0; t < LOBE_COUNT; ++t) {
-    intw present = p[t] > 0.0f;
-    if (ANYW(present)) pdf += select((realw)(0.0f), p[t] * lobe_pdf(t, m, L, V), present);
+  /* Unrolled by hand, each lobe's pdf with its index a constant: as a loop (which PoCL's LLVM
+     keeps), lobe_pdf dispatched on t at run time, a fifth of --lobe all's time. */
+#define MIXTURE_TERM(t)                                                                        \
+  {                                                                                            \
+    intw present = p[t] > 0.0f;                                                                \
+    if (ANYW(present)) pdf += select((realw)(0.0f), p[t] * lobe_pdf(t, m, L, V), present);     \
   }
+  MIXTURE_TERM(LOBE_DIFFUSE)
+  MIXTURE_TERM(LOBE_SPECULAR)
+  MIXTURE_TERM(LOBE_SHEEN)
+  MIXTURE_TERM(LOBE_COAT)
+  MIXTURE_TERM(LOBE_UNIFORM)
+#undef MIXTURE_TERM
   return pdf;
 }
 
 /* A direction from each lane's lobe t with (u1, u2); L.z <= 0 (or no reflection) when it produced
-   none. Each lobe's sampler runs where any lane chose it. */
+   none. The samplers share one shape: a point (st cos phi, st sin phi, z), which is the direction
+   itself for the two hemispheres, and for the GGX lobes and the sheen a microfacet normal (offset
+   by Vh and scaled by the alphas for GGX) that reflects V in the lobe's frame (the specular's
+   rotation; none for the others). Each lane selects its own lobe's parameters, so a group runs one
+   azimuth, one normalization and one reflection whatever lobes its lanes chose; only each lobe's
+   own inversion runs where a lane chose it. */
 BRDF_FN vec3w lobe_sample(intw t, const material_lanes m, vec3w V, realw u1, realw u2) {
-  vec3w L = {(realw)(0.0f), (realw)(0.0f), (realw)(-1.0f)};
-  intw is = t == LOBE_DIFFUSE;
-  if (ANYW(is)) L = select3(L, SampleCosineHemisphere(u1, u2), is);
-  is = t == LOBE_UNIFORM;
-  if (ANYW(is)) L = select3(L, SampleUniformHemisphere(u1, u2), is);
-  is = t == LOBE_SPECULAR;
-  if (ANYW(is)) {
-    vec3w Va = to_aniso(m, V);
-    L = select3(L, from_aniso(m, reflect_about(Va, SampleGGXVNDFBounded(Va, m.alpha_t, m.alpha, u1, u2))), is);
+  const intw spec = t == LOBE_SPECULAR, ggx = spec | (t == LOBE_COAT), sheen = t == LOBE_SHEEN;
+  const intw unif = t == LOBE_UNIFORM, hemi = (t == LOBE_DIFFUSE) | unif;
+  const realw zero = (realw)(0.0f), one = (realw)(1.0f);
+  realw rc = select(one, m.aniso_cos, spec), rs = select(zero, m.aniso_sin, spec);
+  realw ax = select(one, select(m.clearcoat_alpha, m.alpha_t, spec), ggx);
+  realw ay = select(one, select(m.clearcoat_alpha, m.alpha, spec), ggx);
+  vec3w Va = {V.x * rc + V.y * rs, V.y * rc - V.x * rs, V.z};
+  realw c, sn = sincos_2pi(select(u2, u1, ggx), &c);
+  /* The hemispheres: Malley's (cosine) or uniform in z. */
+  realw z = select(sqrt(max(1.0f - u1, zero)), u1, unif);
+  realw st = select(sqrt(u1), sqrt(max(1.0f - u1 * u1, zero)), unif);
+  vec3w Vh = {zero, zero, zero};
+  if (ANYW(ggx)) {
+    /* Eto & Tokuyoshi's bounded cap (SampleGGXVNDFBounded). */
+    vec3w s = {ax * Va.x, ay * Va.y, Va.z};
+    vec3w h = vec3w_normalize_fast(s);
+    realw b = BoundedVNDFK(Va, ax, ay) * h.z;
+    realw zg = (1.0f - u2) * (1.0f + b) - b;
+    z = select(z, zg, ggx);
+    st = select(st, sqrt(clamp(1.0f - zg * zg, zero, one)), ggx);
+    Vh = select3(Vh, h, ggx);
   }
-  is = t == LOBE_COAT;
-  if (ANYW(is)) L = select3(L, reflect_about(V, SampleGGXVNDFBounded(V, m.clearcoat_alpha, m.clearcoat_alpha, u1, u2)), is);
-  is = t == LOBE_SHEEN;
-  if (ANYW(is)) {
-    vec3w H = SampleCharlieNormal(m.sheen_alpha, u1, u2);
+  if (ANYW(sheen)) {
+    /* The sheen's normal at cos^2 c2, sin^2 s2 (SampleCharlieNormal, SampleAshikhminNormal). */
+    realw e = 2.0f * m.sheen_alpha / (1.0f + 2.0f * m.sheen_alpha);
+    realw lu = log(max(u1, (realw)(1.0e-38f)));
+    realw c2 = clamp(-expm1(lu * e), zero, one), s2 = clamp(exp(lu * e), zero, one);
 #if SAMPLE_ASHIKHMIN
-    H = select3(H, SampleAshikhminNormal(m.sheen_alpha, u1, u2), sheen_ashikhmin(m));
+    intw ash = sheen_ashikhmin(m);
+    if (ANYW(ash & sheen)) {
+      realw m2 = m.sheen_alpha * m.sheen_alpha, pc = 1.0f / (1.0f + 4.0f * m2);
+      intw cosine = u1 < pc;
+      realw v = select(clamp((u1 - pc) / (1.0f - pc), zero, one), u1 / pc, cosine);
+      realw tt = -m2 * log1p(-min(v, (realw)(0.99999994f)));
+      c2 = select(c2, max(select(tt / (1.0f + tt), 1.0f - v, cosine), zero), ash);
+      s2 = select(s2, max(select(1.0f / (1.0f + tt), v, cosine), zero), ash);
+    }
 #endif
-    L = select3(L, reflect_about(V, H), is & (dot3w(V, H) > 0.0f));
+    z = select(z, sqrt(c2), sheen);
+    st = select(st, sqrt(s2), sheen);
   }
-  return L;
+  vec3w N = {st * c + Vh.x, st * sn + Vh.y, z + Vh.z};
+  vec3w Ne = {ax * N.x, ay * N.y, max(N.z, zero)};
+  vec3w H = vec3w_normalize_fast(Ne);
+  realw k = 2.0f * dot3w(Va, H);
+  vec3w R = {k * H.x - Va.x, k * H.y - Va.y, k * H.z - Va.z};
+  vec3w L = {R.x * rc - R.y * rs, R.x * rs + R.y * rc, R.z};
+  L = select3(L, N, hemi);
+  vec3w none = {zero, zero, (realw)(-1.0f)};
+  return select3(L, none, (t > LOBE_UNIFORM) | (sheen & (k <= 0.0f)));
 }
 
 /* Each lane's material: row k's index where there is an index array, else material 0. */
 BRDF_FN material_lanes sample_material(__global const brdfcl_material* materials, __global const uint* index,
                                        uint n, const int partial) {
-  if (!index) return material_splat(materials);
+  if (BRDFCL_ONE_MATERIAL || !index) return material_splat(materials);
 #if BRDFCL_W == 1
   return material_splat(materials + index[0]);
 #else
@@ -216,6 +266,32 @@ BRDF_FN material_lanes sample_material(__global const brdfcl_material* materials
   return material_gather(materials, k);
 #endif
 }
+
+/* BRDFCL_W rows of 7 floats (Lx Ly Lz pdf wr wg wb) from the 7 column vectors o[0..6], stored as 7
+   whole vectors: element j = q W + p of output vector q is column j % 7 of lane j / 7, which a tree
+   of constant shuffles picks (pairs of columns, then their halves), the inverse of rows.h's
+   TABLE_COLUMN. A lane-by-lane store of 7 scalars would cost more than drawing the direction. */
+#if BRDFCL_W > 1
+#define OUT7_C(q, p) (((q) * BRDFCL_W + (p)) % 7)
+#define OUT7_K(q, p) (((q) * BRDFCL_W + (p)) / 7)
+#define OUT7_PAIR(q, pr, p) (OUT7_C(q, p) / 2 == (pr) ? (OUT7_C(q, p) % 2) * BRDFCL_W + OUT7_K(q, p) : -1)
+#define OUT7_LOW(q, unused, p) (OUT7_C(q, p) < 2 ? (p) : OUT7_C(q, p) < 4 ? BRDFCL_W + (p) : -1)
+#define OUT7_HIGH(q, unused, p) (OUT7_C(q, p) < 4 ? -1 : OUT7_C(q, p) < 6 ? (p) : BRDFCL_W + (p))
+#define OUT7_HALF(q, unused, p) (OUT7_C(q, p) < 4 ? (p) : BRDFCL_W + (p))
+#define OUT7_VECTOR(o, q)                                                                                    \
+  __builtin_shufflevector(                                                                                   \
+      __builtin_shufflevector(__builtin_shufflevector(o[0], o[1], ROWS_LANES(OUT7_PAIR, q, 0)),              \
+                              __builtin_shufflevector(o[2], o[3], ROWS_LANES(OUT7_PAIR, q, 1)),              \
+                              ROWS_LANES(OUT7_LOW, q, 0)),                                                   \
+      __builtin_shufflevector(__builtin_shufflevector(o[4], o[5], ROWS_LANES(OUT7_PAIR, q, 2)),              \
+                              __builtin_shufflevector(o[6], o[6], ROWS_LANES(OUT7_PAIR, q, 3)),              \
+                              ROWS_LANES(OUT7_HIGH, q, 0)),                                                  \
+      ROWS_LANES(OUT7_HALF, q, 0))
+#define OUT7_STORE(o, p)                                                                                     \
+  VSTOREW(OUT7_VECTOR(o, 0), 0, p), VSTOREW(OUT7_VECTOR(o, 1), 1, p), VSTOREW(OUT7_VECTOR(o, 2), 2, p),      \
+      VSTOREW(OUT7_VECTOR(o, 3), 3, p), VSTOREW(OUT7_VECTOR(o, 4), 4, p), VSTOREW(OUT7_VECTOR(o, 5), 5, p),  \
+      VSTOREW(OUT7_VECTOR(o, 6), 6, p)
+#endif
 
 /* Rows of V (3 floats, unit vectors) and u (3 floats in [0, 1)): u3 picks the lobe, u1 and u2
    drive the lobe's sampler. Writes Lx Ly Lz pdf wr wg wb, w = f(L, V) cos(theta_L) / pdf, all 0
@@ -235,7 +311,7 @@ BRDF_FN void sample_rows_group(uint first, uint n, const int partial, __global c
   realw p[LOBE_COUNT];
   lobe_probabilities(m, v.z, albedo_e, albedo_size, p);
   intw t = BRDFCL_LOBE == BRDFCL_LOBE_ALL ? lobe_choose(p, uu.z) : (intw)(LOBE_OF_OPTION);
-  vec3w L = vec3w_normalize(lobe_sample(t, m, v, uu.x, uu.y));
+  vec3w L = vec3w_normalize_fast(lobe_sample(t, m, v, uu.x, uu.y));
   intw above = (v.z > 0.0f) & (L.z > 0.0f);
   realw pdf = (realw)(0.0f);
   if (ANYW(above)) pdf = select((realw)(0.0f), mixture_pdf(p, m, L, v), above);
@@ -251,10 +327,14 @@ BRDF_FN void sample_rows_group(uint first, uint n, const int partial, __global c
 #if BRDFCL_W == 1
   for (int c = 0; c < 7; ++c) out[c] = o[c];
 #else
-  float cols[7][BRDFCL_W];
-  for (int c = 0; c < 7; ++c) VSTOREW(o[c], 0, cols[c]);
-  for (uint j = 0; j < n; ++j)
-    for (int c = 0; c < 7; ++c) out[7 * j + c] = cols[c][j];
+  if (!partial) {
+    OUT7_STORE(o, out);
+  } else {
+    float cols[7][BRDFCL_W];
+    for (int c = 0; c < 7; ++c) VSTOREW(o[c], 0, cols[c]);
+    for (uint j = 0; j < n; ++j)
+      for (int c = 0; c < 7; ++c) out[7 * j + c] = cols[c][j];
+  }
 #endif
 }
 

@@ -16,6 +16,37 @@ BRDF_FN vec3w vec3w_normalize(vec3w v) {
   return o;
 }
 
+/* The samplers' own normalizations (the stretched view, the microfacet normal, L) with brdf_rsqrt:
+   rsqrt is a square root and a correctly rounded division on CPUs
+   (-cl-fp32-correctly-rounded-divide-sqrt), and L = 2 (V.H) H - V is as good as H is. The caller's
+   V keeps vec3w_normalize: the pdf of a sharp lobe at a grazing view is ill-conditioned in V (h = L +
+   V cancels), and `brdfcl pdf` must normalize V as `brdfcl sample` did. */
+BRDF_FN vec3w vec3w_normalize_fast(vec3w v) {
+  realw inv = brdf_rsqrt(max(dot3w(v, v), (realw)(1.0e-30f)));
+  vec3w o = {v.x * inv, v.y * inv, v.z * inv};
+  return o;
+}
+
+/* sin and cos of 2 pi u for u in [0, 1), every sampler's azimuth, without the library's range
+   reduction (a call per lobe and group on PoCL, 16 lanes each): u is folded exactly (Sterbenz) to
+   y in [-1/4, 1/4] with 2 pi u = pi - 2 pi y or 2 pi y modulo 2 pi, and the Taylor polynomials of
+   degrees 11 and 12 in a = 2 pi y, |a| <= pi / 2, are within 6e-8 of sin and cos there, about
+   float's own rounding. The sine is returned, the cosine stored in *c. */
+BRDF_FN realw sincos_2pi(realw u, realw* c) {
+  realw x = u - select((realw)(0.0f), (realw)(1.0f), u >= 0.5f);
+  intw fold = fabs(x) > 0.25f;
+  realw y = select(x, copysign((realw)(0.5f), x) - x, fold);
+  realw a = 6.28318530717958648f * y, a2 = a * a;
+  realw sn = fma(a2, fma(a2, fma(a2, fma(a2, fma(a2, -2.5052108385441718775e-8f, 2.7557319223985890653e-6f),
+                                                  -1.9841269841269841270e-4f), 8.3333333333333333333e-3f),
+                         -1.6666666666666666667e-1f), 1.0f) * a;
+  realw cs = fma(a2, fma(a2, fma(a2, fma(a2, fma(a2, fma(a2, 2.0876756987868098979e-9f, -2.7557319223985890653e-7f),
+                                                          2.4801587301587301587e-5f), -1.3888888888888888889e-3f),
+                                         4.1666666666666666667e-2f), -0.5f), 1.0f);
+  *c = select(cs, -cs, fold);
+  return sn;
+}
+
 /* Heitz 2018, section 4 and its sampling routine: a visible normal of the GGX lobe (alphas ax along +X, ay along +Y) seen
    from Ve (Ve.z > 0), from (u1, u2) in [0, 1)^2. The view is stretched to the hemisphere
    configuration, a point is drawn on the projected disk (half of it warped by the visible
@@ -28,8 +59,8 @@ BRDF_FN vec3w SampleGGXVNDF(vec3w Ve, realw ax, realw ay, realw u1, realw u2) {
   intw tilted = lensq > 0.0f;
   vec3w T1 = {select((realw)(1.0f), -Vh.y * inv_len, tilted), select((realw)(0.0f), Vh.x * inv_len, tilted), (realw)(0.0f)};
   vec3w T2 = {Vh.y * T1.z - Vh.z * T1.y, Vh.z * T1.x - Vh.x * T1.z, Vh.x * T1.y - Vh.y * T1.x};
-  realw r = sqrt(u1), phi = 2.0f * M_PI_F * u2;
-  realw t1 = r * cos(phi), t2 = r * sin(phi);
+  realw r = sqrt(u1), cphi, sphi = sincos_2pi(u2, &cphi);
+  realw t1 = r * cphi, t2 = r * sphi;
   realw sh = 0.5f * (1.0f + Vh.z);
   t2 = (1.0f - sh) * sqrt(max(1.0f - t1 * t1, (realw)(0.0f))) + sh * t2;
   realw tz = sqrt(max(1.0f - t1 * t1 - t2 * t2, (realw)(0.0f)));
@@ -66,8 +97,8 @@ BRDF_FN vec3w reflect_about(vec3w V, vec3w H) {
 
 /* Malley's method: a uniform point on the disk lifted to the hemisphere; pdf N.L / pi. */
 BRDF_FN vec3w SampleCosineHemisphere(realw u1, realw u2) {
-  realw r = sqrt(u1), phi = 2.0f * M_PI_F * u2;
-  vec3w L = {r * cos(phi), r * sin(phi), sqrt(max(1.0f - u1, (realw)(0.0f)))};
+  realw r = sqrt(u1), c, sn = sincos_2pi(u2, &c);
+  vec3w L = {r * c, r * sn, sqrt(max(1.0f - u1, (realw)(0.0f)))};
   return L;
 }
 BRDF_FN realw PdfCosineHemisphere(vec3w L) { return max(L.z, (realw)(0.0f)) * M_1_PI_F; }
@@ -75,8 +106,8 @@ BRDF_FN realw PdfCosineHemisphere(vec3w L) { return max(L.z, (realw)(0.0f)) * M_
 /* Uniform over the upper hemisphere; pdf 1 / (2 pi). The sheen lobe peaks towards grazing
    angles, where a cosine density would starve it. */
 BRDF_FN vec3w SampleUniformHemisphere(realw u1, realw u2) {
-  realw z = u1, r = sqrt(max(1.0f - z * z, (realw)(0.0f))), phi = 2.0f * M_PI_F * u2;
-  vec3w L = {r * cos(phi), r * sin(phi), z};
+  realw z = u1, r = sqrt(max(1.0f - z * z, (realw)(0.0f))), c, sn = sincos_2pi(u2, &c);
+  vec3w L = {r * c, r * sn, z};
   return L;
 }
 BRDF_FN realw PdfUniformHemisphere(vec3w L) { return select((realw)(0.0f), (realw)(0.5f * M_1_PI_F), L.z > 0.0f); }
@@ -87,10 +118,10 @@ BRDF_FN realw PdfUniformHemisphere(vec3w L) { return select((realw)(0.0f), (real
 BRDF_FN vec3w SampleGGXVNDFCaps(vec3w Ve, realw ax, realw ay, realw u1, realw u2) {
   vec3w s = {ax * Ve.x, ay * Ve.y, Ve.z};
   vec3w Vh = vec3w_normalize(s);
-  realw phi = 2.0f * M_PI_F * u1;
+  realw c, sn = sincos_2pi(u1, &c);
   realw z = (1.0f - u2) * (1.0f + Vh.z) - Vh.z;
   realw st = sqrt(clamp(1.0f - z * z, (realw)(0.0f), (realw)(1.0f)));
-  vec3w Nh = {st * cos(phi) + Vh.x, st * sin(phi) + Vh.y, z + Vh.z};
+  vec3w Nh = {st * c + Vh.x, st * sn + Vh.y, z + Vh.z};
   vec3w Ne = {ax * Nh.x, ay * Nh.y, max(Nh.z, (realw)(0.0f))};
   return vec3w_normalize(Ne);
 }
@@ -111,10 +142,10 @@ BRDF_FN vec3w SampleGGXVNDFBounded(vec3w Ve, realw ax, realw ay, realw u1, realw
   vec3w s = {ax * Ve.x, ay * Ve.y, Ve.z};
   vec3w Vh = vec3w_normalize(s);
   realw b = BoundedVNDFK(Ve, ax, ay) * Vh.z;
-  realw phi = 2.0f * M_PI_F * u1;
+  realw c, sn = sincos_2pi(u1, &c);
   realw z = (1.0f - u2) * (1.0f + b) - b;
   realw st = sqrt(clamp(1.0f - z * z, (realw)(0.0f), (realw)(1.0f)));
-  vec3w Nh = {st * cos(phi) + Vh.x, st * sin(phi) + Vh.y, z + Vh.z};
+  vec3w Nh = {st * c + Vh.x, st * sn + Vh.y, z + Vh.z};
   vec3w Ne = {ax * Nh.x, ay * Nh.y, max(Nh.z, (realw)(0.0f))};
   return vec3w_normalize(Ne);
 }
@@ -126,16 +157,24 @@ BRDF_FN vec3w SampleGGXVNDFBounded(vec3w Ve, realw ax, realw ay, realw u1, realw
 BRDF_FN realw PdfGGXVNDFBoundedReflect(vec3w L, vec3w V, realw ax, realw ay) {
   vec3w h = {L.x + V.x, L.y + V.y, L.z + V.z};
   realw h2 = max(dot3w(h, h), (realw)(1.0e-30f));
-  realw D = D_GGX_Anisotropic(h.x, h.y, h.z, h2, ax, ay);
-  realw t = sqrt(ax * ax * V.x * V.x + ay * ay * V.y * V.y + V.z * V.z);
-  realw pdf = D / (2.0f * (t + BoundedVNDFK(V, ax, ay) * V.z));
+  /* One division where D_GGX_Anisotropic and k take four: with A = ax ay and
+     d' = A^2 ((hx / ax)^2 + (hy / ay)^2 + hz^2), D = h2^2 A^3 / (pi d'^2); k = nk / dk. A >= 1e-6
+     (BRDFCL_MIN_ALPHA), so A^3 and d'^2 stay normal floats. */
+  realw A = ax * ay, ax2 = ax * ax, ay2 = ay * ay;
+  realw d = h.x * h.x * ay2 + h.y * h.y * ax2 + h.z * h.z * (A * A);
+  realw t = sqrt(ax2 * V.x * V.x + ay2 * V.y * V.y + V.z * V.z);
+  realw a = clamp(min(ax, ay), (realw)(0.0f), (realw)(1.0f));
+  realw s = 1.0f + sqrt(V.x * V.x + V.y * V.y);
+  realw a2 = a * a, s2 = s * s;
+  realw nk = (1.0f - a2) * s2, dk = s2 + a2 * V.z * V.z;
+  realw pdf = (h2 * h2 * (A * A * A) * dk) / ((2.0f * M_PI_F) * (d * d) * (t * dk + nk * V.z));
   return keep_or_zero(pdf, (L.z > 0.0f) & (h.z > 0.0f));
 }
 
 /* A microfacet normal at polar cosine ct (sine st) and azimuth 2 pi u. */
 BRDF_FN vec3w normal_at(realw ct, realw st, realw u) {
-  realw phi = 2.0f * M_PI_F * u;
-  vec3w H = {st * cos(phi), st * sin(phi), ct};
+  realw c, sn = sincos_2pi(u, &c);
+  vec3w H = {st * c, st * sn, ct};
   return H;
 }
 

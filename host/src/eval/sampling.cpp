@@ -89,7 +89,8 @@ SamplingBatch makeSamplingBatch(Runtime& rt, Evaluator& ev, const std::vector<Ma
   try {
     s.lanes = laneShape(rt.info()).lanes;
     s.program = rt.opencl().program("sample.cl", materialDefines(options, features) +
-                                                     fmt::format(" -DBRDFCL_W={}", s.lanes));
+                                                     fmt::format(" -DBRDFCL_W={}", s.lanes) +
+                                                     (materials.size() == 1 ? " -DBRDFCL_ONE_MATERIAL=1" : ""));
     const auto& ctx = rt.opencl().context();
     s.materials = cl::Buffer(ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, packed.size() * sizeof(brdfcl_material),
                              const_cast<brdfcl_material*>(packed.data()));
