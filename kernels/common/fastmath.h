@@ -18,22 +18,26 @@ BRDF_FN realw brdf_exp2(realw y) { return native_exp2(y); }
 BRDF_FN realw brdf_log2(realw x) { return native_log2(x); }
 BRDF_FN realw brdf_rsqrt(realw x) { return native_rsqrt(x); }
 #else
-/* 2^y: y = n + f with |f| <= 1/2, 2^f = e^t (t = f ln2) by its degree-7 Taylor series (truncation
-   5e-9), 2^n by building the exponent bits. Below -126 the result flushes to 0, as the BRDF's
+/* 2^y: y = n + f with n the nearest integer and |f| <= 1/2, 2^f = e^t (t = f ln2) by its degree-7
+   Taylor series (truncation 5e-9), 2^n by building the exponent bits. Below -126 the result flushes to 0, as the BRDF's
    factors underflow there anyway; above 127 it saturates at 2^127-ish (never reached). The series
    is 1 + t q(t) with q evaluated in Estrin's order (pairs of terms, then powers t^2 and t^4): four
    dependent multiply-adds instead of seven, so the chains of exp and log in the sheen lobes overlap
    more; q's rounding reaches the result scaled by |t| <= 0.35. */
 BRDF_FN realw brdf_exp2(realw y) {
   realw yc = clamp(y, -126.0f, 127.0f);
-  realw n = floor(yc + 0.5f);
+  /* n, the nearest integer (ties to even), from the low bits of yc + 1.5 2^23 (exact for |yc| < 2^22):
+     three operations where floor() is eleven in PoCL's library, and through the bits, so that no
+     -ffast-math (the OpenMP peer) or -cl-fast-relaxed-math can fold the sum away. */
+  intw ni = AS_INTW(yc + 12582912.0f) - 0x4b400000;
+  realw n = CONVERT_REALW(ni);
   realw t = (yc - n) * 0.69314718056f;
   realw t2 = t * t;
   realw q01 = 1.0f + t * 0.5f, q23 = 0.16666666667f + t * 0.041666666667f;
   realw q45 = 0.0083333333333f + t * 0.0013888888889f;
   realw q = q01 + t2 * q23 + (t2 * t2) * (q45 + t2 * 0.00019841269841f);
   realw p = 1.0f + t * q;
-  realw scale = AS_REALW((CONVERT_INTW(n) + 127) << 23);
+  realw scale = AS_REALW((ni + 127) << 23);
   return select(p * scale, (realw)(0.0f), y < -126.0f);
 }
 
