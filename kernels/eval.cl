@@ -16,6 +16,21 @@
 #define STREAM_STORES 0
 #endif
 
+/* A plane's lanes as one vector load or store: PoCL's vload16 and vstore16 know only the float's
+   alignment and assemble the vector from 8-byte pieces (8 loads and 7 shuffles a plane); a vector
+   type aligned like a float lets the compiler issue one unaligned vector access. */
+#if defined(__clang__) && BRDFCL_W > 1
+typedef realw __attribute__((aligned(4))) realw_plane;
+typedef uintw __attribute__((aligned(4))) uintw_plane;
+#define PLANE_LOAD(i, p) (((__global const realw_plane*)(p))[i])
+#define INDEX_LOAD(i, p) (((__global const uintw_plane*)(p))[i])
+#define PLANE_STORE(v, i, p) (((__global realw_plane*)(p))[i] = (v))
+#else
+#define PLANE_LOAD VLOADW
+#define INDEX_LOAD VLOADW
+#define PLANE_STORE VSTOREW
+#endif
+
 /* One material per sample, gathered by index (read once for all lanes in a program built for one
    material, BRDFCL_ONE_MATERIAL: a branch here instead costs the gathering kernel ~10 %). Every
    plane is its own buffer, so callers can hand over their arrays in place and a plane stays
@@ -29,12 +44,12 @@ __kernel void eval_samples(__global const float* restrict Lx, __global const flo
                            __global float* restrict out_r, __global float* restrict out_g,
                            __global float* restrict out_b) {
   uint i = get_global_id(0);
-  vec3w L = {VLOADW(i, Lx), VLOADW(i, Ly), VLOADW(i, Lz)};
-  vec3w V = {VLOADW(i, Vx), VLOADW(i, Vy), VLOADW(i, Vz)};
+  vec3w L = {PLANE_LOAD(i, Lx), PLANE_LOAD(i, Ly), PLANE_LOAD(i, Lz)};
+  vec3w V = {PLANE_LOAD(i, Vx), PLANE_LOAD(i, Vy), PLANE_LOAD(i, Vz)};
 #if BRDFCL_ONE_MATERIAL
   material_lanes m = material_splat(materials);
 #else
-  material_lanes m = material_gather(materials, VLOADW(i, material_index));
+  material_lanes m = material_gather(materials, INDEX_LOAD(i, material_index));
 #endif
   rgbw f = brdf_material(m, L, V, sheen_e, sheen_e_size);
 #if STREAM_STORES
@@ -51,9 +66,9 @@ __kernel void eval_samples(__global const float* restrict Lx, __global const flo
     return;
   }
 #endif
-  VSTOREW(f.r, i, out_r);
-  VSTOREW(f.g, i, out_g);
-  VSTOREW(f.b, i, out_b);
+  PLANE_STORE(f.r, i, out_r);
+  PLANE_STORE(f.g, i, out_g);
+  PLANE_STORE(f.b, i, out_b);
 }
 
 /* Lowers *bad_row to the first row (`first` is lane 0's) whose lane is set in `bad`. */

@@ -87,7 +87,7 @@ BRDF_FN lobe_value lobe_specular(const material_lanes m, lobe_geometry g) {
   realw ht = h.x * c + h.y * s, hb = h.y * c - h.x * s;
   realw TdotV = V.x * c + V.y * s, BdotV = V.y * c - V.x * s;
   realw TdotL = L.x * c + L.y * s, BdotL = L.y * c - L.x * s;
-  realw spec = D_GGX_Anisotropic(ht, hb, h.z, g.h2, m.alpha_t, m.alpha) *
+  realw spec = D_GGX_Anisotropic_rcp(ht, hb, h.z, g.h2, m.alpha_t, m.alpha, 1.0f / m.alpha_t, 1.0f / m.alpha) *
                V_GGX_Anisotropic(g.NdotL, g.NdotV, TdotV, BdotV, TdotL, BdotL, m.alpha_t, m.alpha);
 #else
   realw spec = D_GGX(g.hxy2, g.hn2, m.alpha) * V_SmithGGXCorrelated(g.NdotL, g.NdotV, m.alpha);

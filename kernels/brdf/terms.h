@@ -21,6 +21,16 @@ BRDF_FN realw D_GGX_Anisotropic(realw ht, realw hb, realw hn, realw h2, realw at
   return (h2 * h2) / (M_PI_F * at * ab * d * d);
 }
 
+/* The same D with 1/at and 1/ab given: where the alphas are the same for every lane (one material),
+   the compiler hoists the two divisions out of the loop over samples, and they leave the chain of
+   dependent operations that bounds a sample's latency. t, b round twice instead of once. */
+BRDF_FN realw D_GGX_Anisotropic_rcp(realw ht, realw hb, realw hn, realw h2, realw at, realw ab, realw inv_at,
+                                    realw inv_ab) {
+  realw t = ht * inv_at, b = hb * inv_ab;
+  realw d = t * t + b * b + hn * hn;
+  return (h2 * h2) / (M_PI_F * at * ab * d * d);
+}
+
 /* Walter et al. 2007 GGX; glTF 2.0 Appendix B "Microfacet Surfaces". hxy2 = hx^2 + hy^2. */
 BRDF_FN realw D_GGX(realw hxy2, realw hn2, realw alpha) {
   realw a2 = alpha * alpha;

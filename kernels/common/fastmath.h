@@ -18,16 +18,26 @@ BRDF_FN realw brdf_exp2(realw y) { return native_exp2(y); }
 BRDF_FN realw brdf_log2(realw x) { return native_log2(x); }
 BRDF_FN realw brdf_rsqrt(realw x) { return native_rsqrt(x); }
 #else
-/* 2^y: y = n + f with |f| <= 1/2, 2^f by its degree-7 Taylor series in f ln2 (truncation
-   5e-9), 2^n by building the exponent bits. Below -126 the result flushes to 0, as the BRDF's
-   factors underflow there anyway; above 127 it saturates at 2^127-ish (never reached). */
+/* 2^y: y = n + f with n the nearest integer and |f| <= 1/2, 2^f = e^t (t = f ln2) by its degree-7
+   Taylor series (truncation 5e-9), 2^n by building the exponent bits. Below -126 the result flushes to 0, as the BRDF's
+   factors underflow there anyway; above 127 it saturates at 2^127-ish (never reached). The series
+   is 1 + t q(t) with q evaluated in Estrin's order (pairs of terms, then powers t^2 and t^4): four
+   dependent multiply-adds instead of seven, so the chains of exp and log in the sheen lobes overlap
+   more; q's rounding reaches the result scaled by |t| <= 0.35. */
 BRDF_FN realw brdf_exp2(realw y) {
   realw yc = clamp(y, -126.0f, 127.0f);
-  realw n = floor(yc + 0.5f);
+  /* n, the nearest integer (ties to even), from the low bits of yc + 1.5 2^23 (exact for |yc| < 2^22):
+     three operations where floor() is eleven in PoCL's library, and through the bits, so that no
+     -ffast-math (the OpenMP peer) or -cl-fast-relaxed-math can fold the sum away. */
+  intw ni = AS_INTW(yc + 12582912.0f) - 0x4b400000;
+  realw n = CONVERT_REALW(ni);
   realw t = (yc - n) * 0.69314718056f;
-  realw p = 1.0f + t * (1.0f + t * (0.5f + t * (0.16666666667f + t * (0.041666666667f +
-            t * (0.0083333333333f + t * (0.0013888888889f + t * 0.00019841269841f))))));
-  realw scale = AS_REALW((CONVERT_INTW(n) + 127) << 23);
+  realw t2 = t * t;
+  realw q01 = 1.0f + t * 0.5f, q23 = 0.16666666667f + t * 0.041666666667f;
+  realw q45 = 0.0083333333333f + t * 0.0013888888889f;
+  realw q = q01 + t2 * q23 + (t2 * t2) * (q45 + t2 * 0.00019841269841f);
+  realw p = 1.0f + t * q;
+  realw scale = AS_REALW((ni + 127) << 23);
   return select(p * scale, (realw)(0.0f), y < -126.0f);
 }
 
@@ -36,22 +46,26 @@ BRDF_FN realw brdf_exp2(realw y) {
 BRDF_FN realw brdf_exp(realw x) { return brdf_exp2(x * 1.44269504089f); }
 
 /* ln(1 + f) / f on the reduced range f in [sqrt(1/2) - 1, sqrt(2) - 1]: a degree-9 polynomial,
-   minimax in relative error (4.1e-9) fitted for these float coefficients; ln(1 + f) = f P(f)
-   then rounds to <= 1.6 ulp. A polynomial in f = m - 1 needs no division (an atanh series in
-   (m - 1)/(m + 1) would need one a call). */
+   minimax in relative error (4.1e-9) fitted for these float coefficients, evaluated in Estrin's
+   order (pairs of terms, then f^2, f^4, f^8: five dependent steps instead of ten). A polynomial in
+   f = m - 1 needs no division (an atanh series in (m - 1)/(m + 1) would need one a call). */
 BRDF_FN realw brdf_ln1p_reduced(realw f) {
-  return f * (1.0f + f * (-4.999998808e-01f + f * (3.333332539e-01f + f * (-2.500158548e-01f +
-         f * (2.000196874e-01f + f * (-1.660900861e-01f + f * (1.418182403e-01f + f * (-1.324348301e-01f +
-         f * (1.290474683e-01f + f * -7.621168345e-02f)))))))));
+  realw f2 = f * f, f4 = f2 * f2;
+  realw a0 = 1.0f + f * -4.999998808e-01f, a1 = 3.333332539e-01f + f * -2.500158548e-01f;
+  realw a2 = 2.000196874e-01f + f * -1.660900861e-01f, a3 = 1.418182403e-01f + f * -1.324348301e-01f;
+  realw a4 = 1.290474683e-01f + f * -7.621168345e-02f;
+  return f * (a0 + f2 * a1 + f4 * (a2 + f2 * a3) + (f4 * f4) * a4);
 }
 
 #if !BRDFCL_NATIVE_MATH
 /* log2(1 + f) on the same range: the same fit for log2 (the coefficients above times log2 e,
    refitted), so that log2 near 1 keeps its relative accuracy without a rounded scaling. */
 BRDF_FN realw brdf_log2_1p_reduced(realw f) {
-  return f * (1.442695022e+00f + f * (-7.213473320e-01f + f * (4.808982313e-01f + f * (-3.606966436e-01f +
-         f * (2.885674238e-01f + f * (-2.396173477e-01f + f * (2.046004683e-01f + f * (-1.910630763e-01f +
-         f * (1.861761361e-01f + f * -1.099502221e-01f)))))))));
+  realw f2 = f * f, f4 = f2 * f2;
+  realw a0 = 1.442695022e+00f + f * -7.213473320e-01f, a1 = 4.808982313e-01f + f * -3.606966436e-01f;
+  realw a2 = 2.885674238e-01f + f * -2.396173477e-01f, a3 = 2.046004683e-01f + f * -1.910630763e-01f;
+  realw a4 = 1.861761361e-01f + f * -1.099502221e-01f;
+  return f * (a0 + f2 * a1 + f4 * (a2 + f2 * a3) + (f4 * f4) * a4);
 }
 
 /* log2 x for x > 0: x = 2^e m with m in [sqrt(1/2), sqrt(2)), log2 x = e + log2(1 + (m - 1)),
