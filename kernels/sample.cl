@@ -291,13 +291,6 @@ BRDF_FN material_lanes sample_material(__global const brdfcl_material* materials
   VSTOREW(OUT7_VECTOR(o, 0), 0, p), VSTOREW(OUT7_VECTOR(o, 1), 1, p), VSTOREW(OUT7_VECTOR(o, 2), 2, p),      \
       VSTOREW(OUT7_VECTOR(o, 3), 3, p), VSTOREW(OUT7_VECTOR(o, 4), 4, p), VSTOREW(OUT7_VECTOR(o, 5), 5, p),  \
       VSTOREW(OUT7_VECTOR(o, 6), 6, p)
-/* The same 7 vectors as non-temporal stores (clang's builtin, as eval.cl's STREAM_STORES): the
-   results of a launch larger than the caches reach the host from memory anyway, and these skip
-   the read for ownership of each line. They need p aligned to a realw. */
-#define OUT7_STREAM_ONE(o, q, p) __builtin_nontemporal_store(OUT7_VECTOR(o, q), (__global realw*)(p) + (q))
-#define OUT7_STREAM(o, p)                                                                                    \
-  OUT7_STREAM_ONE(o, 0, p), OUT7_STREAM_ONE(o, 1, p), OUT7_STREAM_ONE(o, 2, p), OUT7_STREAM_ONE(o, 3, p),    \
-      OUT7_STREAM_ONE(o, 4, p), OUT7_STREAM_ONE(o, 5, p), OUT7_STREAM_ONE(o, 6, p)
 #endif
 
 /* Rows of V (3 floats, unit vectors) and u (3 floats in [0, 1)): u3 picks the lobe, u1 and u2
@@ -335,14 +328,7 @@ BRDF_FN void sample_rows_group(uint first, uint n, const int partial, __global c
   for (int c = 0; c < 7; ++c) out[c] = o[c];
 #else
   if (!partial) {
-    /* Streamed where the launch's results reach 8 MiB (smaller ones stay in cache for the copy
-       back) and the output, which may be the caller's rows in place, is aligned to the vector;
-       every group's 7 vectors start 7 W floats apart, so the base decides for all of them. */
-    const ulong stream_bytes = 8ul << 20;
-    if (get_global_size(0) * 7 * sizeof(realw) >= stream_bytes && ((ulong)out & (sizeof(realw) - 1)) == 0)
-      OUT7_STREAM(o, out);
-    else
-      OUT7_STORE(o, out);
+    OUT7_STORE(o, out);
   } else {
     float cols[7][BRDFCL_W];
     for (int c = 0; c < 7; ++c) VSTOREW(o[c], 0, cols[c]);
