@@ -21,6 +21,14 @@
 #define SAMPLE_ASHIKHMIN 0
 #endif
 
+/* --lobe specular or clearcoat alone under the spec's profile: the weight cancels the GGX D that
+   f and the pdf share (sample_rows_group). */
+#if BRDFCL_PROFILE == BRDFCL_PROFILE_SPEC && (BRDFCL_LOBE == BRDFCL_LOBE_SPECULAR || BRDFCL_LOBE == BRDFCL_LOBE_CLEARCOAT)
+#define SAMPLE_GGX_CANCELLED 1
+#else
+#define SAMPLE_GGX_CANCELLED 0
+#endif
+
 /* LOBE_UNIFORM: the uniform hemisphere, which takes the share of a sheen lobe that its own sampler
    serves poorly (docs/sampling.md). */
 enum { LOBE_DIFFUSE, LOBE_SPECULAR, LOBE_SHEEN, LOBE_COAT, LOBE_UNIFORM, LOBE_COUNT };
@@ -314,13 +322,32 @@ BRDF_FN void sample_rows_group(uint first, uint n, const int partial, __global c
   vec3w L = vec3w_normalize_fast(lobe_sample(t, m, v, uu.x, uu.y));
   intw above = (v.z > 0.0f) & (L.z > 0.0f);
   realw pdf = (realw)(0.0f);
+#if SAMPLE_GGX_CANCELLED
+  /* One GGX lobe alone: its D is in f and in the pdf, so w = (f / D) cos (D / pdf), D never formed,
+     and the visibility's division and the pdf's ratio share one. */
+  realw d_num = (realw)(0.0f), d_den = (realw)(1.0f);
+  if (ANYW(above)) {
+    realw lobe_pdf_of_l =
+        BRDFCL_LOBE == BRDFCL_LOBE_SPECULAR
+            ? PdfGGXVNDFBoundedReflectD(to_aniso(m, L), to_aniso(m, v), m.alpha_t, m.alpha, &d_num, &d_den)
+            : PdfGGXVNDFBoundedReflectD(L, v, m.clearcoat_alpha, m.clearcoat_alpha, &d_num, &d_den);
+    pdf = select((realw)(0.0f), lobe_pdf_of_l, above);
+  }
+#else
   if (ANYW(above)) pdf = select((realw)(0.0f), mixture_pdf(p, m, L, v), above);
+#endif
   intw keep = (pdf > 0.0f) & isfinite(pdf);
   realw o[7];
   for (int c = 0; c < 7; ++c) o[c] = (realw)(0.0f);
   if (ANYW(keep)) {
+#if SAMPLE_GGX_CANCELLED
+    realw vis_half_rcp;
+    rgbw f = brdf_lobe_over_dv(m, L, v, sheen_e, sheen_e_size, &vis_half_rcp);
+    realw k = (L.z * d_num) / (d_den * vis_half_rcp);
+#else
     rgbw f = brdf_material(m, L, v, sheen_e, sheen_e_size);
     realw k = L.z / pdf;
+#endif
     o[0] = L.x, o[1] = L.y, o[2] = L.z, o[3] = pdf, o[4] = f.r * k, o[5] = f.g * k, o[6] = f.b * k;
     for (int c = 0; c < 7; ++c) o[c] = keep_or_zero(o[c], keep);
   }

@@ -77,28 +77,46 @@ BRDF_FN lobe_value lobe_diffuse(const material_lanes m, lobe_geometry g) {
   return out;
 }
 
+/* Appendix B's specular colour, the Fresnel of the dielectric and metal mixed by metallic. */
+BRDF_FN rgbw lobe_specular_colour(const material_lanes m, lobe_geometry g) {
+  realw F = F_Schlick(0.04f, g.w);
+  realw ks = (1.0f - m.metallic) * F;
+  rgbw colour;
+  colour.r = ks + m.metallic * F_Schlick(m.base_r, g.w);
+  colour.g = ks + m.metallic * F_Schlick(m.base_g, g.w);
+  colour.b = ks + m.metallic * F_Schlick(m.base_b, g.w);
+  return colour;
+}
+
+/* The specular's visibility term as 1 / (2 V), V in KHR_materials_anisotropy's form when the batch
+   has anisotropy. */
+BRDF_FN realw lobe_specular_vis_half_rcp(const material_lanes m, lobe_geometry g) {
+  vec3w L = g.L, V = g.V;
+#if BRDFCL_HAS_ANISOTROPY
+  realw c = m.aniso_cos, s = m.aniso_sin;
+  realw TdotV = V.x * c + V.y * s, BdotV = V.y * c - V.x * s;
+  realw TdotL = L.x * c + L.y * s, BdotL = L.y * c - L.x * s;
+  return V_GGX_Anisotropic_half_rcp(g.NdotL, g.NdotV, TdotV, BdotV, TdotL, BdotL, m.alpha_t, m.alpha);
+#else
+  return V_SmithGGXCorrelated_half_rcp(g.NdotL, g.NdotV, m.alpha);
+#endif
+}
+
 /* Appendix B's specular, dielectric and metal mixed by metallic; D and V in KHR_materials_anisotropy's
    forms ("Anisotropy", "Individual lights") when the batch has anisotropy. */
 BRDF_FN lobe_value lobe_specular(const material_lanes m, lobe_geometry g) {
-  vec3w L = g.L, V = g.V, h = g.h;
+  vec3w h = g.h;
 #if BRDFCL_HAS_ANISOTROPY
   /* T' = (cos r, sin r, 0), B' = N x T' = (-sin r, cos r, 0). */
   realw c = m.aniso_cos, s = m.aniso_sin;
   realw ht = h.x * c + h.y * s, hb = h.y * c - h.x * s;
-  realw TdotV = V.x * c + V.y * s, BdotV = V.y * c - V.x * s;
-  realw TdotL = L.x * c + L.y * s, BdotL = L.y * c - L.x * s;
-  realw spec = D_GGX_Anisotropic_rcp(ht, hb, h.z, g.h2, m.alpha_t, m.alpha, 1.0f / m.alpha_t, 1.0f / m.alpha) *
-               V_GGX_Anisotropic(g.NdotL, g.NdotV, TdotV, BdotV, TdotL, BdotL, m.alpha_t, m.alpha);
+  realw D = D_GGX_Anisotropic_rcp(ht, hb, h.z, g.h2, m.alpha_t, m.alpha, 1.0f / m.alpha_t, 1.0f / m.alpha);
 #else
-  realw spec = D_GGX(g.hxy2, g.hn2, m.alpha) * V_SmithGGXCorrelated(g.NdotL, g.NdotV, m.alpha);
+  realw D = D_GGX(g.hxy2, g.hn2, m.alpha);
 #endif
-  realw F = F_Schlick(0.04f, g.w);
-  realw ks = (1.0f - m.metallic) * F;
   lobe_value out;
-  out.colour.r = ks + m.metallic * F_Schlick(m.base_r, g.w);
-  out.colour.g = ks + m.metallic * F_Schlick(m.base_g, g.w);
-  out.colour.b = ks + m.metallic * F_Schlick(m.base_b, g.w);
-  out.weight = spec;
+  out.colour = lobe_specular_colour(m, g);
+  out.weight = D * (0.5f / lobe_specular_vis_half_rcp(m, g));
   return out;
 }
 
@@ -144,6 +162,13 @@ BRDF_FN realw lobe_clearcoat(realw coat, realw clearcoat_alpha, vec3w Lc, vec3w 
   realw NcL = max(Lc.z, BRDFCL_MIN_COS), NcV = max(Vc.z, BRDFCL_MIN_COS);
   realw cc = D_GGX(h.x * h.x + h.y * h.y, h.z * h.z, clearcoat_alpha) * V_SmithGGXCorrelated(NcL, NcV, clearcoat_alpha);
   return coat * cc;
+}
+
+/* The clearcoat's visibility as 1 / (2 V): what a sampler whose pdf holds the same D divides by
+   (sample.cl). */
+BRDF_FN realw lobe_clearcoat_vis_half_rcp(realw clearcoat_alpha, vec3w Lc, vec3w Vc) {
+  realw NcL = max(Lc.z, BRDFCL_MIN_COS), NcV = max(Vc.z, BRDFCL_MIN_COS);
+  return V_SmithGGXCorrelated_half_rcp(NcL, NcV, clearcoat_alpha);
 }
 
 #endif

@@ -153,8 +153,9 @@ BRDF_FN vec3w SampleGGXVNDFBounded(vec3w Ve, realw ax, realw ay, realw u1, realw
 /* pdf of L = reflect(V, H), H from SampleGGXVNDFBounded: the VNDF's G1(V) D(H) / (4 V.z) times
    the ratio of the two caps' areas, (1 + Vh.z) / (1 + b), which simplifies to
    D(H) / (2 (t + k V.z)) with t = |(ax Vx, ay Vy, Vz)| (Eto & Tokuyoshi 2023, eq. 8). 0 unless
-   L.z > 0. L, V in the lobe's frame, V.z > 0. */
-BRDF_FN realw PdfGGXVNDFBoundedReflect(vec3w L, vec3w V, realw ax, realw ay) {
+   L.z > 0. L, V in the lobe's frame, V.z > 0. D(H) / pdf = 2 (t + k V.z) =
+   2 *d_num / *d_den, for a weight whose f holds the same D. */
+BRDF_FN realw PdfGGXVNDFBoundedReflectD(vec3w L, vec3w V, realw ax, realw ay, realw* d_num, realw* d_den) {
   vec3w h = {L.x + V.x, L.y + V.y, L.z + V.z};
   realw h2 = max(dot3w(h, h), (realw)(1.0e-30f));
   /* One division where D_GGX_Anisotropic and k take four: with A = ax ay and
@@ -168,7 +169,13 @@ BRDF_FN realw PdfGGXVNDFBoundedReflect(vec3w L, vec3w V, realw ax, realw ay) {
   realw a2 = a * a, s2 = s * s;
   realw nk = (1.0f - a2) * s2, dk = s2 + a2 * V.z * V.z;
   realw pdf = (h2 * h2 * (A * A * A) * dk) / ((2.0f * M_PI_F) * (d * d) * (t * dk + nk * V.z));
+  *d_num = t * dk + nk * V.z;
+  *d_den = dk;
   return keep_or_zero(pdf, (L.z > 0.0f) & (h.z > 0.0f));
+}
+BRDF_FN realw PdfGGXVNDFBoundedReflect(vec3w L, vec3w V, realw ax, realw ay) {
+  realw d_num, d_den;
+  return PdfGGXVNDFBoundedReflectD(L, V, ax, ay, &d_num, &d_den);
 }
 
 /* A microfacet normal at polar cosine ct (sine st) and azimuth 2 pi u. */

@@ -39,21 +39,29 @@ BRDF_FN realw D_GGX(realw hxy2, realw hn2, realw alpha) {
   return a2 * h2 * h2 / (M_PI_F * d * d);
 }
 
-/* Heitz 2014 height-correlated Smith, anisotropic form; KHR_materials_anisotropy "Individual lights". */
-BRDF_FN realw V_GGX_Anisotropic(realw NdotL, realw NdotV, realw TdotV, realw BdotV, realw TdotL,
-                                realw BdotL, realw at, realw ab) {
+/* Heitz 2014 height-correlated Smith, anisotropic form; KHR_materials_anisotropy "Individual lights".
+   V = 1 / (2 W): W (the _half_rcp form) alone serves a caller that folds the division into its own. */
+BRDF_FN realw V_GGX_Anisotropic_half_rcp(realw NdotL, realw NdotV, realw TdotV, realw BdotV, realw TdotL,
+                                         realw BdotL, realw at, realw ab) {
   realw tv = at * TdotV, bv = ab * BdotV, tl = at * TdotL, bl = ab * BdotL;
   realw GGXV = NdotL * sqrt(tv * tv + bv * bv + NdotV * NdotV);
   realw GGXL = NdotV * sqrt(tl * tl + bl * bl + NdotL * NdotL);
-  return 0.5f / (GGXV + GGXL);
+  return GGXV + GGXL;
+}
+BRDF_FN realw V_GGX_Anisotropic(realw NdotL, realw NdotV, realw TdotV, realw BdotV, realw TdotL,
+                                realw BdotL, realw at, realw ab) {
+  return 0.5f / V_GGX_Anisotropic_half_rcp(NdotL, NdotV, TdotV, BdotV, TdotL, BdotL, at, ab);
 }
 
 /* Heitz 2014 height-correlated Smith; glTF 2.0 Appendix B "Microfacet Surfaces". */
-BRDF_FN realw V_SmithGGXCorrelated(realw NdotL, realw NdotV, realw alpha) {
+BRDF_FN realw V_SmithGGXCorrelated_half_rcp(realw NdotL, realw NdotV, realw alpha) {
   realw a2 = alpha * alpha;
   realw GGXV = NdotL * sqrt(NdotV * NdotV * (1.0f - a2) + a2);
   realw GGXL = NdotV * sqrt(NdotL * NdotL * (1.0f - a2) + a2);
-  return 0.5f / (GGXV + GGXL);
+  return GGXV + GGXL;
+}
+BRDF_FN realw V_SmithGGXCorrelated(realw NdotL, realw NdotV, realw alpha) {
+  return 0.5f / V_SmithGGXCorrelated_half_rcp(NdotL, NdotV, alpha);
 }
 
 /* Schlick 1994; glTF 2.0 Appendix B. `w` = (1 - |V.H|)^5, computed once by the caller. */

@@ -63,6 +63,29 @@ BRDF_FN rgbw layer_clearcoat(rgbw below, realw clearcoat, realw clearcoat_alpha,
   return result;
 }
 
+/* Under --lobe specular or --lobe clearcoat alone, f = c D / (2 W), D the lobe's GGX distribution
+   and 1 / (2 W) its visibility: c is returned, W stored in *vis_half_rcp. A sampler whose pdf
+   holds the same D forms the weight f cos / pdf with D cancelled (docs/sampling.md, "The weight of
+   a GGX lobe alone"). Unit L and V above the horizon. */
+#if BRDFCL_LOBE == BRDFCL_LOBE_SPECULAR || BRDFCL_LOBE == BRDFCL_LOBE_CLEARCOAT
+BRDF_FN rgbw brdf_lobe_over_dv(const material_lanes m, vec3w L, vec3w V, __global const float* sheen_e,
+                               int sheen_e_size, realw* vis_half_rcp) {
+  realw coat = (realw)(0.0f);
+  if (BRDFCL_HAS_CLEARCOAT) coat = m.clearcoat * F_Schlick(0.04f, pow5w(1.0f - V.z));
+  if (BRDFCL_LOBE == BRDFCL_LOBE_CLEARCOAT) {
+    *vis_half_rcp = lobe_clearcoat_vis_half_rcp(m.clearcoat_alpha, L, V);
+    return rgbw_splat(coat);
+  }
+  lobe_geometry g = lobe_geometry_of(L, V);
+  *vis_half_rcp = lobe_specular_vis_half_rcp(m, g);
+  rgbw result = lobe_specular_colour(m, g);
+  if (BRDFCL_HAS_SHEEN && BRDFCL_SCALING != BRDFCL_SCALING_NONE)
+    result = rgbw_scale(result, sheen_base_scale(m, g, sheen_e, sheen_e_size));
+  if (BRDFCL_HAS_CLEARCOAT) result = rgbw_scale(result, 1.0f - coat);
+  return result;
+}
+#endif
+
 /* Every layer, as the engine profiles' brdf_profile: f in 1/sr without the cosine. */
 #if BRDFCL_PROFILE == BRDFCL_PROFILE_SPEC
 BRDF_FN rgbw brdf_profile(const material_lanes m, vec3w L, vec3w V, vec3w Lc, vec3w Vc,
