@@ -128,15 +128,21 @@ BRDF_FN vec3w SampleGGXVNDFCaps(vec3w Ve, realw ax, realw ay, realw u1, realw u2
 
 /* Eto & Tokuyoshi 2023, "Bounded VNDF Sampling for Smith-GGX Reflections", listing 1: the
    spherical cap of SampleGGXVNDFCaps cut lower, at z = -k Vh.z with
-   k = (1 - a^2) s^2 / (s^2 + a^2 Ve.z^2), a = min(ax, ay), s = 1 + |Ve.xy|. The part cut away
+   k = (1 - a^2) s^2 / (s^2 + a^2 Ve.z^2), a = min(ax, ay), s = 1 + |Ve.xy|; BoundedVNDFKParts gives
+   the numerator and (in *den) the denominator, for a caller that folds the division into its own. The part cut away
    holds only normals whose reflection of Ve lies below the horizon, so the sampler keeps the same
    density shape above it and loses fewer directions: none at normal incidence (isotropic).
    Ve.z > 0. */
-BRDF_FN realw BoundedVNDFK(vec3w Ve, realw ax, realw ay) {
+BRDF_FN realw BoundedVNDFKParts(vec3w Ve, realw ax, realw ay, realw* den) {
   realw a = clamp(min(ax, ay), (realw)(0.0f), (realw)(1.0f));
   realw s = 1.0f + sqrt(Ve.x * Ve.x + Ve.y * Ve.y);
   realw a2 = a * a, s2 = s * s;
-  return (1.0f - a2) * s2 / (s2 + a2 * Ve.z * Ve.z);
+  *den = s2 + a2 * Ve.z * Ve.z;
+  return (1.0f - a2) * s2;
+}
+BRDF_FN realw BoundedVNDFK(vec3w Ve, realw ax, realw ay) {
+  realw den, num = BoundedVNDFKParts(Ve, ax, ay, &den);
+  return num / den;
 }
 BRDF_FN vec3w SampleGGXVNDFBounded(vec3w Ve, realw ax, realw ay, realw u1, realw u2) {
   vec3w s = {ax * Ve.x, ay * Ve.y, Ve.z};
@@ -164,12 +170,9 @@ BRDF_FN realw PdfGGXVNDFBoundedReflectD(vec3w L, vec3w V, realw ax, realw ay, re
   realw A = ax * ay, ax2 = ax * ax, ay2 = ay * ay;
   realw d = h.x * h.x * ay2 + h.y * h.y * ax2 + h.z * h.z * (A * A);
   realw t = sqrt(ax2 * V.x * V.x + ay2 * V.y * V.y + V.z * V.z);
-  realw a = clamp(min(ax, ay), (realw)(0.0f), (realw)(1.0f));
-  realw s = 1.0f + sqrt(V.x * V.x + V.y * V.y);
-  realw a2 = a * a, s2 = s * s;
-  realw nk = (1.0f - a2) * s2, dk = s2 + a2 * V.z * V.z;
-  realw pdf = (h2 * h2 * (A * A * A) * dk) / ((2.0f * M_PI_F) * (d * d) * (t * dk + nk * V.z));
+  realw dk, nk = BoundedVNDFKParts(V, ax, ay, &dk);
   *d_num = t * dk + nk * V.z;
+  realw pdf = (h2 * h2 * (A * A * A) * dk) / ((2.0f * M_PI_F) * (d * d) * *d_num);
   *d_den = dk;
   return keep_or_zero(pdf, (L.z > 0.0f) & (h.z > 0.0f));
 }

@@ -12,7 +12,7 @@ import numpy as np
 from . import _core
 from ._core import InputError
 from ._inputs import (_GBUFFER_NAME, MaterialsLike, PathLike, _directions, _gbuffer, _index, _int, _json_default,
-                      _materials, _output, _warn)
+                      _materials, _output, _same_rows, _warn)
 from ._options import _DEFAULT_OPTIONS, Options, _options
 
 
@@ -83,8 +83,7 @@ class Evaluator:
         if any(isinstance(a, DeviceArray) for a in (L, V, material_index, out)):
             return self._evaluate_device(m, L, V, material_index, out, opts)
         Ld, Vd = _directions(L, "L"), _directions(V, "V")
-        if Ld.shape[0] != Vd.shape[0]:
-            raise InputError(f"L and V must have the same number of rows, got {Ld.shape[0]} and {Vd.shape[0]}")
+        _same_rows(Ld, Vd)
         idx = _index(material_index, Ld.shape[0], len(m))
         if idx is not None and idx.shape[0] != Ld.shape[0]:
             raise InputError(f"material_index must have one entry per sample: {idx.shape[0]} for {Ld.shape[0]} samples")
@@ -155,8 +154,7 @@ class Evaluator:
                         sheen_distribution=sheen_distribution, sheen_scaling=sheen_scaling, profile=profile)._core
         m = _materials(materials, strict)
         Ld, Vd = _directions(L, "L"), _directions(V, "V")
-        if Ld.shape[0] != Vd.shape[0]:
-            raise InputError(f"L and V must have the same number of rows, got {Ld.shape[0]} and {Vd.shape[0]}")
+        _same_rows(Ld, Vd)
         out = _output(out, (len(m), Ld.shape[0], 3), Ld, Vd)
         self._device.evaluate_grid(m, Ld, Vd, out, opts)
         return out

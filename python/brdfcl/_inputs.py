@@ -74,6 +74,12 @@ def _directions(a: Any, name: str) -> np.ndarray:
     return np.ascontiguousarray(arr)
 
 
+def _same_rows(L: np.ndarray, V: np.ndarray) -> None:
+    """L and V hold one direction pair a row."""
+    if L.shape[0] != V.shape[0]:
+        raise InputError(f"L and V must have the same number of rows, got {L.shape[0]} and {V.shape[0]}")
+
+
 def _output(out: Optional[np.ndarray], shape: Tuple[int, ...], L: np.ndarray, V: np.ndarray) -> np.ndarray:
     """A fresh float32 result array of `shape`, or the caller's `out` once it is checked to be one
     that does not overlap the directions (the device reads them while it writes out)."""

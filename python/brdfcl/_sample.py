@@ -9,7 +9,7 @@ import numpy as np
 from . import _core
 from ._core import InputError
 from ._device import Evaluator, _evaluator
-from ._inputs import MaterialsLike, _directions, _index, _materials, _output
+from ._inputs import MaterialsLike, _directions, _index, _materials, _output, _same_rows
 from ._options import Options, _options
 
 
@@ -92,8 +92,7 @@ def pdf(materials: MaterialsLike, L: Any, V: Any, material_index: Any = None, *,
                     sheen_distribution=sheen_distribution, sheen_scaling=sheen_scaling, profile=profile)._core
     m = _materials(materials, strict)
     Ld, Vd = _unit_rows(L, "L"), _unit_rows(V, "V")
-    if Ld.shape[0] != Vd.shape[0]:
-        raise InputError(f"L and V must have the same number of rows, got {Ld.shape[0]} and {Vd.shape[0]}")
+    _same_rows(Ld, Vd)
     idx = _index32(material_index, Ld.shape[0], len(m))
     o = _output(out, (Ld.shape[0],), Ld, Vd)
     _core.pdf(ev._device, m, Ld, Vd, idx, o, opts)
