@@ -197,7 +197,8 @@ BRDF_FN realw mixture_pdf(const realw p[LOBE_COUNT], const material_lanes m, vec
 }
 
 /* A direction from each lane's lobe t with (u1, u2); L.z <= 0 (or no reflection) when it produced
-   none. The samplers share one shape: a point (st cos phi, st sin phi, z), which is the direction
+   none. V may have any length (the caller's row before its normalization): a reflected L then has
+   V's length, and the hemispheres' L is unit. The samplers share one shape: a point (st cos phi, st sin phi, z), which is the direction
    itself for the two hemispheres, and for the GGX lobes and the sheen a microfacet normal (offset
    by Vh and scaled by the alphas for GGX) that reflects V in the lobe's frame (the specular's
    rotation; none for the others). Each lane selects its own lobe's parameters, so a group runs one
@@ -275,7 +276,7 @@ BRDF_FN material_lanes sample_material(__global const brdfcl_material* materials
 #endif
 }
 
-/* BRDFCL_W rows of 7 floats (Lx Ly Lz pdf wr wg wb) from the 7 column vectors o[0..6], stored as 7
+/* BRDFCL_W rows of 7 floats (Lx Ly Lz pdf wr wg wb) from the 7 column vectors o0..o6, stored as 7
    whole vectors: element j = q W + p of output vector q is column j % 7 of lane j / 7, which a tree
    of constant shuffles picks (pairs of columns, then their halves), the inverse of rows.h's
    TABLE_COLUMN. A lane-by-lane store of 7 scalars would cost more than drawing the direction. */
@@ -288,17 +289,25 @@ BRDF_FN material_lanes sample_material(__global const brdfcl_material* materials
 #define OUT7_HALF(q, unused, p) (OUT7_C(q, p) < 4 ? (p) : BRDFCL_W + (p))
 #define OUT7_VECTOR(o, q)                                                                                    \
   __builtin_shufflevector(                                                                                   \
-      __builtin_shufflevector(__builtin_shufflevector(o[0], o[1], ROWS_LANES(OUT7_PAIR, q, 0)),              \
-                              __builtin_shufflevector(o[2], o[3], ROWS_LANES(OUT7_PAIR, q, 1)),              \
+      __builtin_shufflevector(__builtin_shufflevector(o##0, o##1, ROWS_LANES(OUT7_PAIR, q, 0)),              \
+                              __builtin_shufflevector(o##2, o##3, ROWS_LANES(OUT7_PAIR, q, 1)),              \
                               ROWS_LANES(OUT7_LOW, q, 0)),                                                   \
-      __builtin_shufflevector(__builtin_shufflevector(o[4], o[5], ROWS_LANES(OUT7_PAIR, q, 2)),              \
-                              __builtin_shufflevector(o[6], o[6], ROWS_LANES(OUT7_PAIR, q, 3)),              \
+      __builtin_shufflevector(__builtin_shufflevector(o##4, o##5, ROWS_LANES(OUT7_PAIR, q, 2)),              \
+                              __builtin_shufflevector(o##6, o##6, ROWS_LANES(OUT7_PAIR, q, 3)),              \
                               ROWS_LANES(OUT7_HIGH, q, 0)),                                                  \
       ROWS_LANES(OUT7_HALF, q, 0))
-#define OUT7_STORE(o, p)                                                                                     \
-  VSTOREW(OUT7_VECTOR(o, 0), 0, p), VSTOREW(OUT7_VECTOR(o, 1), 1, p), VSTOREW(OUT7_VECTOR(o, 2), 2, p),      \
-      VSTOREW(OUT7_VECTOR(o, 3), 3, p), VSTOREW(OUT7_VECTOR(o, 4), 4, p), VSTOREW(OUT7_VECTOR(o, 5), 5, p),  \
-      VSTOREW(OUT7_VECTOR(o, 6), 6, p)
+/* PoCL's vstore16 knows only a float's alignment and stores a vector in three pieces (16, 16 and 32
+   bytes); a vector type aligned like a float is one unaligned vector store (eval.cl's planes). */
+#if defined(__clang__)
+typedef realw __attribute__((aligned(4))) realw_row_vector;
+#define OUT7_VSTORE(v, i, p) (((__global realw_row_vector*)(p))[i] = (v))
+#else
+#define OUT7_VSTORE VSTOREW
+#endif
+#define OUT7_STORE(o, p)                                                                                          \
+  OUT7_VSTORE(OUT7_VECTOR(o, 0), 0, p), OUT7_VSTORE(OUT7_VECTOR(o, 1), 1, p), OUT7_VSTORE(OUT7_VECTOR(o, 2), 2, p), \
+      OUT7_VSTORE(OUT7_VECTOR(o, 3), 3, p), OUT7_VSTORE(OUT7_VECTOR(o, 4), 4, p),                                 \
+      OUT7_VSTORE(OUT7_VECTOR(o, 5), 5, p), OUT7_VSTORE(OUT7_VECTOR(o, 6), 6, p)
 #endif
 
 /* Rows of V (3 floats, unit vectors) and u (3 floats in [0, 1)): u3 picks the lobe, u1 and u2
@@ -314,7 +323,11 @@ BRDF_FN void sample_rows_group(uint first, uint n, const int partial, __global c
   u += 3 * (ulong)first;
   out += 7 * (ulong)first;
   material_lanes m = sample_material(materials, index ? index + first : index, n, partial);
-  vec3w v = vec3w_normalize(partial ? rows_load_partial(V, n) : rows_load(V));
+  /* The direction is drawn from the row's V as read, so that V's exact normalization (a square root
+     and a division, which the pdf and f need) runs beside the sampler's chain, not at its head;
+     L is normalized at the end either way. */
+  vec3w v_row = partial ? rows_load_partial(V, n) : rows_load(V);
+  vec3w v = vec3w_normalize(v_row);
   vec3w uu = partial ? rows_load_partial(u, n) : rows_load(u);
   realw p[LOBE_COUNT];
   lobe_probabilities(m, v.z, albedo_e, albedo_size, p);
@@ -337,8 +350,9 @@ BRDF_FN void sample_rows_group(uint first, uint n, const int partial, __global c
   if (ANYW(above)) pdf = select((realw)(0.0f), mixture_pdf(p, m, L, v), above);
 #endif
   intw keep = (pdf > 0.0f) & isfinite(pdf);
-  realw o[7];
-  for (int c = 0; c < 7; ++c) o[c] = (realw)(0.0f);
+  /* Seven named vectors, not an array: PoCL keeps a private array that its loops index in memory,
+     a slot a work-item in the work-group's context (448 bytes of stack a work-item). */
+  realw o0 = (realw)(0.0f), o1 = o0, o2 = o0, o3 = o0, o4 = o0, o5 = o0, o6 = o0;
   if (ANYW(keep)) {
 #if SAMPLE_GGX_CANCELLED
     realw vis_half_rcp;
@@ -348,17 +362,19 @@ BRDF_FN void sample_rows_group(uint first, uint n, const int partial, __global c
     rgbw f = brdf_material(m, L, v, sheen_e, sheen_e_size);
     realw k = L.z / pdf;
 #endif
-    o[0] = L.x, o[1] = L.y, o[2] = L.z, o[3] = pdf, o[4] = f.r * k, o[5] = f.g * k, o[6] = f.b * k;
-    for (int c = 0; c < 7; ++c) o[c] = keep_or_zero(o[c], keep);
+    o0 = keep_or_zero(L.x, keep), o1 = keep_or_zero(L.y, keep), o2 = keep_or_zero(L.z, keep);
+    o3 = keep_or_zero(pdf, keep), o4 = keep_or_zero(f.r * k, keep), o5 = keep_or_zero(f.g * k, keep);
+    o6 = keep_or_zero(f.b * k, keep);
   }
 #if BRDFCL_W == 1
-  for (int c = 0; c < 7; ++c) out[c] = o[c];
+  out[0] = o0, out[1] = o1, out[2] = o2, out[3] = o3, out[4] = o4, out[5] = o5, out[6] = o6;
 #else
   if (!partial) {
     OUT7_STORE(o, out);
   } else {
     float cols[7][BRDFCL_W];
-    for (int c = 0; c < 7; ++c) VSTOREW(o[c], 0, cols[c]);
+    VSTOREW(o0, 0, cols[0]), VSTOREW(o1, 0, cols[1]), VSTOREW(o2, 0, cols[2]), VSTOREW(o3, 0, cols[3]);
+    VSTOREW(o4, 0, cols[4]), VSTOREW(o5, 0, cols[5]), VSTOREW(o6, 0, cols[6]);
     for (uint j = 0; j < n; ++j)
       for (int c = 0; c < 7; ++c) out[7 * j + c] = cols[c][j];
   }

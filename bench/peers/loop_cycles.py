@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 # The loop over samples of a compiled batch kernel, counted and timed statically: PoCL's eval_samples
-# (from a POCL_CACHE_DIR) or Dr.Jit's LLVM kernel (a .s of run-drjit-peer --print-ir). Prints its
-# instruction counts and llvm-mca's cycles per iteration (16 lanes); needs objdump and llvm-mca.
+# or another kernel (--kernel sample_rows; from a POCL_CACHE_DIR) or Dr.Jit's LLVM kernel (a .s of
+# run-drjit-peer --print-ir). Prints its instruction counts and llvm-mca's cycles per iteration (16 lanes).
 import argparse
 import glob
 import re
@@ -10,14 +10,20 @@ import sys
 import tempfile
 
 
-def pocl_loop(cache):
-    """The work-item loop (the largest backward jump) of _pocl_kernel_eval_samples_workgroup."""
-    found = glob.glob(f"{cache}/*/*/eval_samples/*/eval_samples.so")
+def pocl_loop(cache, kernel="eval_samples", variant="*"):
+    """The work-item loop (the largest backward jump) of _pocl_kernel_<kernel>_workgroup, from the
+    compiled variant (local size and grid, PoCL's directory name) that `variant` matches: PoCL keeps
+    one a launch shape, and a small grid's differs from a large one's."""
+    found = sorted(glob.glob(f"{cache}/*/*/{kernel}/{variant}/{kernel}.so"))
+    found = [f for f in found if "/0-0-0/" not in f] or found  # 0-0-0: the generic, unspecialized build
     if not found:
-        sys.exit(f"loop_cycles: no eval_samples.so under {cache}")
+        sys.exit(f"loop_cycles: no {kernel}.so matching {variant} under {cache}")
+    if len(found) > 1:
+        print(f"loop_cycles: {len(found)} variants; counting {found[0].split('/')[-2]} (choose with --variant)",
+              file=sys.stderr)
     text = subprocess.run(["objdump", "-d", "--no-show-raw-insn", found[0]], capture_output=True, text=True,
                           check=True).stdout
-    fn = text.split("<_pocl_kernel_eval_samples_workgroup>:")[1].split("\n\n")[0].split("\n")
+    fn = text.split(f"<_pocl_kernel_{kernel}_workgroup>:")[1].split("\n\n")[0].split("\n")
     ins = []
     for line in fn:
         m = re.match(r"\s*([0-9a-f]+):\s+(\S+)\s*(.*)", line)
@@ -52,8 +58,12 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__)
     ap.add_argument("source", help="a POCL_CACHE_DIR holding eval_samples, or Dr.Jit's .s")
     ap.add_argument("--mcpu", default="icelake-server", help="llvm-mca's CPU model (LLVM 14 has no sapphirerapids)")
+    ap.add_argument("--kernel", default="eval_samples", help="PoCL: the kernel's name (sample_rows, pdf_rows, ...)")
+    ap.add_argument("--variant", default="*", help="PoCL: a glob of the compiled variant's directory (4096-1-1-goffs0)")
+    ap.add_argument("--mca-out", help="also write llvm-mca's whole report (timeline, bottlenecks) to this file")
     a = ap.parse_args()
-    body, syntax, stack_store, stack_load = (drjit_loop if a.source.endswith(".s") else pocl_loop)(a.source)
+    body, syntax, stack_store, stack_load = (drjit_loop(a.source) if a.source.endswith(".s")
+                                             else pocl_loop(a.source, a.kernel, a.variant))
     count = lambda p: sum(1 for op, _ in body if p(op))
     row = {"instructions": len(body), "vdivps": count(lambda o: o.startswith("vdiv")),
            "vsqrtps": count(lambda o: o.startswith("vsqrt")), "gathers": count(lambda o: "gather" in o),
@@ -67,6 +77,12 @@ def main():
         f.flush()
         out = subprocess.run(["llvm-mca", f"-mcpu={a.mcpu}", "-iterations=200", "-bottleneck-analysis", f.name],
                              capture_output=True, text=True).stdout
+        if a.mca_out:
+            timeline = subprocess.run(["llvm-mca", f"-mcpu={a.mcpu}", "-iterations=2", "-timeline",
+                                       "-timeline-max-iterations=2", "-timeline-max-cycles=2000", f.name],
+                                      capture_output=True, text=True).stdout
+            with open(a.mca_out, "w") as o:
+                o.write(out + "\n" + timeline)
     cycles = re.search(r"Total Cycles:\s+(\d+)", out)
     bound = re.search(r"Block RThroughput:\s+([\d.]+)", out)
     deps = re.search(r"- Register Dependencies \[\s*([\d.]+)%", out)
