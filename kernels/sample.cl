@@ -221,7 +221,7 @@ BRDF_FN vec3w lobe_sample(intw t, const material_lanes m, vec3w V, realw u1, rea
     /* Eto & Tokuyoshi's bounded cap (SampleGGXVNDFBounded). */
     vec3w s = {ax * Va.x, ay * Va.y, Va.z};
     vec3w h = vec3w_normalize_fast(s);
-    realw b = BoundedVNDFK(Va, ax, ay) * h.z;
+    realw b = BoundedVNDFKOfUnnormalized(Va, ax, ay) * h.z;
     realw zg = (1.0f - u2) * (1.0f + b) - b;
     z = select(z, zg, ggx);
     st = select(st, sqrt(clamp(1.0f - zg * zg, zero, one)), ggx);
@@ -332,7 +332,7 @@ BRDF_FN void sample_rows_group(uint first, uint n, const int partial, __global c
   realw p[LOBE_COUNT];
   lobe_probabilities(m, v.z, albedo_e, albedo_size, p);
   intw t = BRDFCL_LOBE == BRDFCL_LOBE_ALL ? lobe_choose(p, uu.z) : (intw)(LOBE_OF_OPTION);
-  vec3w L = vec3w_normalize_fast(lobe_sample(t, m, v, uu.x, uu.y));
+  vec3w L = vec3w_normalize_fast(lobe_sample(t, m, v_row, uu.x, uu.y));
   intw above = (v.z > 0.0f) & (L.z > 0.0f);
   realw pdf = (realw)(0.0f);
 #if SAMPLE_GGX_CANCELLED

@@ -21,8 +21,29 @@ BRDF_FN vec3w vec3w_normalize(vec3w v) {
    (-cl-fp32-correctly-rounded-divide-sqrt), and L = 2 (V.H) H - V is as good as H is. The caller's
    V keeps vec3w_normalize: the pdf of a sharp lobe at a grazing view is ill-conditioned in V (h = L +
    V cancels), and `brdfcl pdf` must normalize V as `brdfcl sample` did. */
+/* 1 / sqrt(x) for the samplers' normalizations. On AVX-512 (16 lanes) the hardware's 14-bit
+   estimate (vrsqrt14ps, relative error below 2^-14) and one Newton step, about float's rounding,
+   where brdf_rsqrt's bit-pattern estimate needs three: two dependent steps fewer in each of the
+   chains through the microfacet normal and L. */
+#if BRDFCL_W == 16 && defined(__clang__) && defined(__AVX512F__)
+typedef float sampler_v16sf __attribute__((__vector_size__(64)));
+typedef union {
+  realw w;
+  sampler_v16sf v;
+} sampler_v16;
+BRDF_FN realw sampler_rsqrt(realw x) {
+  sampler_v16 in, est;
+  in.w = x;
+  est.v = __builtin_ia32_rsqrt14ps512_mask(in.v, in.v, (ushort)0xffff);
+  realw y = est.w;
+  return y * (1.5f - (0.5f * x) * (y * y));
+}
+#else
+BRDF_FN realw sampler_rsqrt(realw x) { return brdf_rsqrt(x); }
+#endif
+
 BRDF_FN vec3w vec3w_normalize_fast(vec3w v) {
-  realw inv = brdf_rsqrt(max(dot3w(v, v), (realw)(1.0e-30f)));
+  realw inv = sampler_rsqrt(max(dot3w(v, v), (realw)(1.0e-30f)));
   vec3w o = {v.x * inv, v.y * inv, v.z * inv};
   return o;
 }
@@ -143,6 +164,15 @@ BRDF_FN realw BoundedVNDFKParts(vec3w Ve, realw ax, realw ay, realw* den) {
 BRDF_FN realw BoundedVNDFK(vec3w Ve, realw ax, realw ay) {
   realw den, num = BoundedVNDFKParts(Ve, ax, ay, &den);
   return num / den;
+}
+/* The same k of Ve / |Ve| for any Ve with Ve.z > 0: with r = |Ve| and q = |Ve.xy|, s = (r + q) / r and
+   k = (1 - a^2) (r + q)^2 / ((r + q)^2 + a^2 Ve.z^2), so a sampler can start from the caller's view
+   before (and beside) its normalization. */
+BRDF_FN realw BoundedVNDFKOfUnnormalized(vec3w Ve, realw ax, realw ay) {
+  realw a = clamp(min(ax, ay), (realw)(0.0f), (realw)(1.0f)), a2 = a * a;
+  realw q2 = Ve.x * Ve.x + Ve.y * Ve.y;
+  realw rq = sqrt(q2 + Ve.z * Ve.z) + sqrt(q2), rq2 = rq * rq;
+  return ((1.0f - a2) * rq2) / (rq2 + a2 * (Ve.z * Ve.z));
 }
 BRDF_FN vec3w SampleGGXVNDFBounded(vec3w Ve, realw ax, realw ay, realw u1, realw u2) {
   vec3w s = {ax * Ve.x, ay * Ve.y, Ve.z};
