@@ -29,6 +29,11 @@
 #define SAMPLE_GGX_CANCELLED 0
 #endif
 
+/* Whether a group has lanes for a branch's work. A GGX lobe alone keeps nearly every lane, and any()
+   of 16 lanes is some 40 extracts and tests on PoCL: there the work runs unconditionally (the
+   lanes it does not keep are selected away). */
+#define SAMPLE_ANY(x) (SAMPLE_GGX_CANCELLED || ANYW(x))
+
 /* LOBE_UNIFORM: the uniform hemisphere, which takes the share of a sheen lobe that its own sampler
    serves poorly (docs/sampling.md). */
 enum { LOBE_DIFFUSE, LOBE_SPECULAR, LOBE_SHEEN, LOBE_COAT, LOBE_UNIFORM, LOBE_COUNT };
@@ -197,14 +202,16 @@ BRDF_FN realw mixture_pdf(const realw p[LOBE_COUNT], const material_lanes m, vec
 }
 
 /* A direction from each lane's lobe t with (u1, u2); L.z <= 0 (or no reflection) when it produced
-   none. V may have any length (the caller's row before its normalization): a reflected L then has
-   V's length, and the hemispheres' L is unit. The samplers share one shape: a point (st cos phi, st sin phi, z), which is the direction
+   none. The samplers share one shape: a point (st cos phi, st sin phi, z), which is the direction
    itself for the two hemispheres, and for the GGX lobes and the sheen a microfacet normal (offset
    by Vh and scaled by the alphas for GGX) that reflects V in the lobe's frame (the specular's
    rotation; none for the others). Each lane selects its own lobe's parameters, so a group runs one
    azimuth, one normalization and one reflection whatever lobes its lanes chose; only each lobe's
-   own inversion runs where a lane chose it. */
-BRDF_FN vec3w lobe_sample(intw t, const material_lanes m, vec3w V, realw u1, realw u2) {
+   own inversion runs where a lane chose it. V is the unit view; Vk is V at any length (the
+   caller's row before its normalization), from which the GGX cap is drawn, so that V's exact
+   normalization (a square root and a division) runs beside the cap's chain rather than at its
+   head. L is unit to a few ulp (H is normalized, V is unit). */
+BRDF_FN vec3w lobe_sample_from(intw t, const material_lanes m, vec3w Vk, vec3w V, realw u1, realw u2) {
   const intw spec = t == LOBE_SPECULAR, ggx = spec | (t == LOBE_COAT), sheen = t == LOBE_SHEEN;
   const intw unif = t == LOBE_UNIFORM, hemi = (t == LOBE_DIFFUSE) | unif;
   const realw zero = (realw)(0.0f), one = (realw)(1.0f);
@@ -218,14 +225,17 @@ BRDF_FN vec3w lobe_sample(intw t, const material_lanes m, vec3w V, realw u1, rea
   realw st = select(sqrt(u1), sqrt(max(1.0f - u1 * u1, zero)), unif);
   vec3w Vh = {zero, zero, zero};
   if (ANYW(ggx)) {
-    /* Eto & Tokuyoshi's bounded cap (SampleGGXVNDFBounded). */
-    vec3w s = {ax * Va.x, ay * Va.y, Va.z};
+    /* Eto & Tokuyoshi's bounded cap (SampleGGXVNDFBounded), every length of the point scaled by
+       k's denominator dk > 0: the normal is normalized after, so k's division is never made. */
+    vec3w Vka = {Vk.x * rc + Vk.y * rs, Vk.y * rc - Vk.x * rs, Vk.z};
+    vec3w s = {ax * Vka.x, ay * Vka.y, Vka.z};
     vec3w h = vec3w_normalize_fast(s);
-    realw b = BoundedVNDFKOfUnnormalized(Va, ax, ay) * h.z;
-    realw zg = (1.0f - u2) * (1.0f + b) - b;
+    realw dk, bn = BoundedVNDFKPartsOfUnnormalized(Vka, ax, ay, &dk) * h.z;
+    realw zg = (1.0f - u2) * (dk + bn) - bn;
     z = select(z, zg, ggx);
-    st = select(st, sqrt(clamp(1.0f - zg * zg, zero, one)), ggx);
-    Vh = select3(Vh, h, ggx);
+    st = select(st, sqrt(max(dk * dk - zg * zg, zero)), ggx);
+    vec3w dh = {dk * h.x, dk * h.y, dk * h.z};
+    Vh = select3(Vh, dh, ggx);
   }
   if (ANYW(sheen)) {
     /* The sheen's normal at cos^2 c2, sin^2 s2 (SampleCharlieNormal, SampleAshikhminNormal). */
@@ -255,6 +265,9 @@ BRDF_FN vec3w lobe_sample(intw t, const material_lanes m, vec3w V, realw u1, rea
   L = select3(L, N, hemi);
   vec3w none = {zero, zero, (realw)(-1.0f)};
   return select3(L, none, (t > LOBE_UNIFORM) | (sheen & (k <= 0.0f)));
+}
+BRDF_FN vec3w lobe_sample(intw t, const material_lanes m, vec3w V, realw u1, realw u2) {
+  return lobe_sample_from(t, m, V, V, u1, u2);
 }
 
 /* Each lane's material: row k's index where there is an index array, else material 0. */
@@ -323,23 +336,20 @@ BRDF_FN void sample_rows_group(uint first, uint n, const int partial, __global c
   u += 3 * (ulong)first;
   out += 7 * (ulong)first;
   material_lanes m = sample_material(materials, index ? index + first : index, n, partial);
-  /* The direction is drawn from the row's V as read, so that V's exact normalization (a square root
-     and a division, which the pdf and f need) runs beside the sampler's chain, not at its head;
-     L is normalized at the end either way. */
   vec3w v_row = partial ? rows_load_partial(V, n) : rows_load(V);
   vec3w v = vec3w_normalize(v_row);
   vec3w uu = partial ? rows_load_partial(u, n) : rows_load(u);
   realw p[LOBE_COUNT];
   lobe_probabilities(m, v.z, albedo_e, albedo_size, p);
   intw t = BRDFCL_LOBE == BRDFCL_LOBE_ALL ? lobe_choose(p, uu.z) : (intw)(LOBE_OF_OPTION);
-  vec3w L = vec3w_normalize_fast(lobe_sample(t, m, v_row, uu.x, uu.y));
+  vec3w L = lobe_sample_from(t, m, v_row, v, uu.x, uu.y);
   intw above = (v.z > 0.0f) & (L.z > 0.0f);
   realw pdf = (realw)(0.0f);
 #if SAMPLE_GGX_CANCELLED
   /* One GGX lobe alone: its D is in f and in the pdf, so w = (f / D) cos (D / pdf), D never formed,
      and the visibility's division and the pdf's ratio share one. */
   realw d_num = (realw)(0.0f), d_den = (realw)(1.0f);
-  if (ANYW(above)) {
+  if (SAMPLE_ANY(above)) {
     realw lobe_pdf_of_l =
         BRDFCL_LOBE == BRDFCL_LOBE_SPECULAR
             ? PdfGGXVNDFBoundedReflectD(to_aniso(m, L), to_aniso(m, v), m.alpha_t, m.alpha, &d_num, &d_den)
@@ -353,7 +363,7 @@ BRDF_FN void sample_rows_group(uint first, uint n, const int partial, __global c
   /* Seven named vectors, not an array: PoCL keeps a private array that its loops index in memory,
      a slot a work-item in the work-group's context (448 bytes of stack a work-item). */
   realw o0 = (realw)(0.0f), o1 = o0, o2 = o0, o3 = o0, o4 = o0, o5 = o0, o6 = o0;
-  if (ANYW(keep)) {
+  if (SAMPLE_ANY(keep)) {
 #if SAMPLE_GGX_CANCELLED
     realw vis_half_rcp;
     rgbw f = brdf_lobe_over_dv(m, L, v, sheen_e, sheen_e_size, &vis_half_rcp);

@@ -165,14 +165,15 @@ BRDF_FN realw BoundedVNDFK(vec3w Ve, realw ax, realw ay) {
   realw den, num = BoundedVNDFKParts(Ve, ax, ay, &den);
   return num / den;
 }
-/* The same k of Ve / |Ve| for any Ve with Ve.z > 0: with r = |Ve| and q = |Ve.xy|, s = (r + q) / r and
-   k = (1 - a^2) (r + q)^2 / ((r + q)^2 + a^2 Ve.z^2), so a sampler can start from the caller's view
-   before (and beside) its normalization. */
-BRDF_FN realw BoundedVNDFKOfUnnormalized(vec3w Ve, realw ax, realw ay) {
+/* The same k of Ve / |Ve| for any Ve with Ve.z > 0, as a numerator and (in *den) a denominator: with
+   r = |Ve| and q = |Ve.xy|, s = (r + q) / r and k = (1 - a^2) (r + q)^2 / ((r + q)^2 + a^2 Ve.z^2),
+   so a sampler can start from the caller's view before (and beside) its normalization. */
+BRDF_FN realw BoundedVNDFKPartsOfUnnormalized(vec3w Ve, realw ax, realw ay, realw* den) {
   realw a = clamp(min(ax, ay), (realw)(0.0f), (realw)(1.0f)), a2 = a * a;
   realw q2 = Ve.x * Ve.x + Ve.y * Ve.y;
   realw rq = sqrt(q2 + Ve.z * Ve.z) + sqrt(q2), rq2 = rq * rq;
-  return ((1.0f - a2) * rq2) / (rq2 + a2 * (Ve.z * Ve.z));
+  *den = rq2 + a2 * (Ve.z * Ve.z);
+  return (1.0f - a2) * rq2;
 }
 BRDF_FN vec3w SampleGGXVNDFBounded(vec3w Ve, realw ax, realw ay, realw u1, realw u2) {
   vec3w s = {ax * Ve.x, ay * Ve.y, Ve.z};
