@@ -170,8 +170,9 @@ BRDF_FN realw BoundedVNDFK(vec3w Ve, realw ax, realw ay) {
    so a sampler can start from the caller's view before (and beside) its normalization. */
 BRDF_FN realw BoundedVNDFKPartsOfUnnormalized(vec3w Ve, realw ax, realw ay, realw* den) {
   realw a = clamp(min(ax, ay), (realw)(0.0f), (realw)(1.0f)), a2 = a * a;
-  realw q2 = Ve.x * Ve.x + Ve.y * Ve.y;
-  realw rq = sqrt(q2 + Ve.z * Ve.z) + sqrt(q2), rq2 = rq * rq;
+  /* |Ve| and |Ve.xy| as x / sqrt(x), off the divider that V's exact normalization holds. */
+  realw q2 = Ve.x * Ve.x + Ve.y * Ve.y, r2 = q2 + Ve.z * Ve.z;
+  realw rq = r2 * sampler_rsqrt(r2) + q2 * sampler_rsqrt(max(q2, (realw)(1.0e-30f))), rq2 = rq * rq;
   *den = rq2 + a2 * (Ve.z * Ve.z);
   return (1.0f - a2) * rq2;
 }
