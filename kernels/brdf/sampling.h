@@ -35,8 +35,10 @@ BRDF_FN realw sampler_rsqrt(realw x) {
   sampler_v16 in, est;
   in.w = x;
   est.v = __builtin_ia32_rsqrt14ps512_mask(in.v, in.v, (ushort)0xffff);
-  realw y = est.w;
-  return y * (1.5f - (0.5f * x) * (y * y));
+  /* The step as y + y e, e = 1/2 - x y^2 / 2 small: its rounding stays near half an ulp, where
+     y (3/2 - x y^2 / 2) rounds at full size. */
+  realw y = est.w, e = fma(-0.5f * x, y * y, (realw)(0.5f));
+  return fma(y, e, y);
 }
 #else
 BRDF_FN realw sampler_rsqrt(realw x) { return brdf_rsqrt(x); }
