@@ -16,15 +16,10 @@ BRDF_FN vec3w vec3w_normalize(vec3w v) {
   return o;
 }
 
-/* The samplers' own normalizations (the stretched view, the microfacet normal, L) with brdf_rsqrt:
-   rsqrt is a square root and a correctly rounded division on CPUs
-   (-cl-fp32-correctly-rounded-divide-sqrt), and L = 2 (V.H) H - V is as good as H is. The caller's
-   V keeps vec3w_normalize: the pdf of a sharp lobe at a grazing view is ill-conditioned in V (h = L +
-   V cancels), and `brdfcl pdf` must normalize V as `brdfcl sample` did. */
 /* 1 / sqrt(x) for the samplers' normalizations. On AVX-512 (16 lanes) the hardware's 14-bit
    estimate (vrsqrt14ps, relative error below 2^-14) and one Newton step, about float's rounding,
-   where brdf_rsqrt's bit-pattern estimate needs three: two dependent steps fewer in each of the
-   chains through the microfacet normal and L. */
+   where brdf_rsqrt's bit-pattern estimate needs three: two dependent steps fewer in each chain
+   through the stretched view, the microfacet normal and f's half vector. */
 #if BRDFCL_W == 16 && defined(__clang__) && defined(__AVX512F__)
 typedef float sampler_v16sf __attribute__((__vector_size__(64)));
 typedef union {
@@ -44,6 +39,11 @@ BRDF_FN realw sampler_rsqrt(realw x) {
 BRDF_FN realw sampler_rsqrt(realw x) { return brdf_rsqrt(x); }
 #endif
 
+/* The samplers' own normalizations (the stretched view, the microfacet normal) without a division:
+   rsqrt is a square root and a correctly rounded division on CPUs
+   (-cl-fp32-correctly-rounded-divide-sqrt), and L = 2 (V.H) H - V is as good as H is. The caller's
+   V keeps vec3w_normalize: the pdf of a sharp lobe at a grazing view is ill-conditioned in V (h = L +
+   V cancels), and `brdfcl pdf` must normalize V as `brdfcl sample` did. */
 BRDF_FN vec3w vec3w_normalize_fast(vec3w v) {
   realw inv = sampler_rsqrt(max(dot3w(v, v), (realw)(1.0e-30f)));
   vec3w o = {v.x * inv, v.y * inv, v.z * inv};
