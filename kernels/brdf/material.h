@@ -83,11 +83,97 @@ BRDF_FN material_lanes material_splat(__global const brdfcl_material* m) { BRDFC
 BRDF_FN material_lanes material_splat_private(const brdfcl_material* m) { BRDFCL_SPLAT_BODY }
 #endif
 
-/* Each lane has its own material index: one vector gather per field, records being
-   sizeof(brdfcl_material) / 4 floats apart. */
+/* Each lane has its own material index. Sixteen lanes under clang (PoCL) read each lane's record in
+   32-byte pieces and transpose them into field lanes: a 16 x 8 block costs 16 loads and 32
+   shuffles, where a gather costs 16 loads a field and its latency heads every chain. Other widths
+   and compilers gather one field at a time, records being sizeof(brdfcl_material) / 4 floats apart.
+   Either way only the data's path changes: every lane gets its record's bits.
+   BRDFCL_MATERIAL_TRANSPOSE: which of the record's three 8-float pieces are transposed (bit p:
+   floats [8p, 8p + 8)); the others are gathered. The base and sheen pieces are; the spec reads
+   only two fields of the third (the coat), and two gathers cost less than its 16 loads and
+   shuffles. 0 gathers every field, for comparison (docs/performance.md). */
+#ifndef BRDFCL_MATERIAL_TRANSPOSE
+#define BRDFCL_MATERIAL_TRANSPOSE 3
+#endif
 #if BRDFCL_W == 1
 BRDF_FN material_lanes material_gather(__global const brdfcl_material* materials, uintw index) {
   return material_splat(materials + index);
+}
+#elif BRDFCL_W == 16 && defined(__clang__) && BRDFCL_MATERIAL_TRANSPOSE
+typedef float8 __attribute__((aligned(4))) material_piece;
+typedef char brdfcl_record_is_three_pieces[sizeof(brdfcl_material) == 3 * sizeof(float8) ? 1 : -1];
+
+/* Rows j and k (lanes j, k) of floats [at, at + 8) of their records, side by side. */
+#define MATERIAL_PIECE(j) (*(__global const material_piece*)((__global const float*)(materials + index.s##j) + at))
+#define MATERIAL_ROWS(j, k) __builtin_shufflevector(MATERIAL_PIECE(j), MATERIAL_PIECE(k), \
+                                                    0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15)
+/* unpcklps / unpckhps, shufps 0x44 / 0xee and shuff32x4 on 16 floats, per 128-bit quarter. */
+#define MATERIAL_UNPACKLO(x, y) __builtin_shufflevector(x, y, 0, 16, 1, 17, 4, 20, 5, 21, 8, 24, 9, 25, 12, 28, 13, 29)
+#define MATERIAL_UNPACKHI(x, y) __builtin_shufflevector(x, y, 2, 18, 3, 19, 6, 22, 7, 23, 10, 26, 11, 27, 14, 30, 15, 31)
+#define MATERIAL_MOVELH(x, y) __builtin_shufflevector(x, y, 0, 1, 16, 17, 4, 5, 20, 21, 8, 9, 24, 25, 12, 13, 28, 29)
+#define MATERIAL_MOVEHL(x, y) __builtin_shufflevector(x, y, 2, 3, 18, 19, 6, 7, 22, 23, 10, 11, 26, 27, 14, 15, 30, 31)
+#define MATERIAL_EVEN_QUARTERS(x, y) \
+  __builtin_shufflevector(x, y, 0, 1, 2, 3, 8, 9, 10, 11, 16, 17, 18, 19, 24, 25, 26, 27)
+#define MATERIAL_ODD_QUARTERS(x, y) \
+  __builtin_shufflevector(x, y, 4, 5, 6, 7, 12, 13, 14, 15, 20, 21, 22, 23, 28, 29, 30, 31)
+
+/* Floats [at, at + 8) of each lane's record as 8 field lanes. The rows are paired (0, 4), (1, 5),
+   (2, 6), (3, 7), (8, 12), ... so that after two in-quarter steps, which leave field e of rows
+   4q..4q+3 in one quarter, the last step picks whole quarters in lane order. */
+BRDF_FN void material_piece_lanes(__global const brdfcl_material* materials, uint16 index, int at, float16 f[8]) {
+  float16 a0 = MATERIAL_ROWS(0, 4), a1 = MATERIAL_ROWS(1, 5), a2 = MATERIAL_ROWS(2, 6), a3 = MATERIAL_ROWS(3, 7);
+  float16 a4 = MATERIAL_ROWS(8, c), a5 = MATERIAL_ROWS(9, d), a6 = MATERIAL_ROWS(a, e), a7 = MATERIAL_ROWS(b, f);
+  float16 t0 = MATERIAL_UNPACKLO(a0, a1), t1 = MATERIAL_UNPACKHI(a0, a1);
+  float16 t2 = MATERIAL_UNPACKLO(a2, a3), t3 = MATERIAL_UNPACKHI(a2, a3);
+  float16 t4 = MATERIAL_UNPACKLO(a4, a5), t5 = MATERIAL_UNPACKHI(a4, a5);
+  float16 t6 = MATERIAL_UNPACKLO(a6, a7), t7 = MATERIAL_UNPACKHI(a6, a7);
+  float16 s0 = MATERIAL_MOVELH(t0, t2), s1 = MATERIAL_MOVEHL(t0, t2);
+  float16 s2 = MATERIAL_MOVELH(t1, t3), s3 = MATERIAL_MOVEHL(t1, t3);
+  float16 s4 = MATERIAL_MOVELH(t4, t6), s5 = MATERIAL_MOVEHL(t4, t6);
+  float16 s6 = MATERIAL_MOVELH(t5, t7), s7 = MATERIAL_MOVEHL(t5, t7);
+  f[0] = MATERIAL_EVEN_QUARTERS(s0, s4);
+  f[1] = MATERIAL_EVEN_QUARTERS(s1, s5);
+  f[2] = MATERIAL_EVEN_QUARTERS(s2, s6);
+  f[3] = MATERIAL_EVEN_QUARTERS(s3, s7);
+  f[4] = MATERIAL_ODD_QUARTERS(s0, s4);
+  f[5] = MATERIAL_ODD_QUARTERS(s1, s5);
+  f[6] = MATERIAL_ODD_QUARTERS(s2, s6);
+  f[7] = MATERIAL_ODD_QUARTERS(s3, s7);
+}
+
+/* A piece no lane of the batch's lobes reads is dead code, loads included. */
+BRDF_FN material_lanes material_gather(__global const brdfcl_material* materials, uintw index) {
+  float16 field[3 * 8];
+#if (BRDFCL_MATERIAL_TRANSPOSE & 7) != 7
+  intw at = AS_INTW(index) * (int)(sizeof(brdfcl_material) / 4);
+#endif
+#define MATERIAL_GATHER_FIELD(k) field[k] = GATHERW((__global const float*)materials + (k), at);
+#define MATERIAL_GATHER_PIECE(p)                                                                  \
+  MATERIAL_GATHER_FIELD(8 * (p)) MATERIAL_GATHER_FIELD(8 * (p) + 1) MATERIAL_GATHER_FIELD(8 * (p) + 2) \
+  MATERIAL_GATHER_FIELD(8 * (p) + 3) MATERIAL_GATHER_FIELD(8 * (p) + 4) MATERIAL_GATHER_FIELD(8 * (p) + 5) \
+  MATERIAL_GATHER_FIELD(8 * (p) + 6) MATERIAL_GATHER_FIELD(8 * (p) + 7)
+#if BRDFCL_MATERIAL_TRANSPOSE & 1
+  material_piece_lanes(materials, index, 0, field);
+#else
+  MATERIAL_GATHER_PIECE(0)
+#endif
+#if BRDFCL_MATERIAL_TRANSPOSE & 2
+  material_piece_lanes(materials, index, 8, field + 8);
+#else
+  MATERIAL_GATHER_PIECE(1)
+#endif
+#if BRDFCL_MATERIAL_TRANSPOSE & 4
+  material_piece_lanes(materials, index, 16, field + 16);
+#else
+  MATERIAL_GATHER_PIECE(2)
+#endif
+  material_lanes out;
+#define BRDFCL_PIECE_LANE(name, field_) out.name = field[__builtin_offsetof(brdfcl_material, field_) / sizeof(float)];
+  BRDFCL_MATERIAL_LANES(BRDFCL_PIECE_LANE)
+  intw flags = as_int16(field[__builtin_offsetof(brdfcl_material, flags) / sizeof(float)]);
+  out.draft = select((realw)(0.0f), (realw)(1.0f), (flags & (int)BRDFCL_MAT_DRAFT_SHEEN) != 0);
+  out.aniso_ext = select((realw)(0.0f), (realw)(1.0f), (flags & (int)BRDFCL_MAT_ANISOTROPY) != 0);
+  return out;
 }
 #else
 BRDF_FN material_lanes material_gather(__global const brdfcl_material* materials, uintw index) {
