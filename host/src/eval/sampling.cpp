@@ -110,7 +110,7 @@ RowDriver rowDriver(Runtime& rt, const SamplingBatch& s, const char* name) {
 
 void Evaluator::sample(const std::vector<MaterialParams>& materials, const std::uint32_t* material, const float* view,
                        const float* u, std::size_t count, float* out) {
-  Batch b = prepare(materials);
+  Batch b = prepare(materials, Kernels::None);
   checkSampleRows(view, material, u, count, materials.size());
   if (count == 0) return;
   const SamplingBatch s = makeSamplingBatch(rt_, *this, materials, b.packed, b.table, b.tableSize);
@@ -138,7 +138,7 @@ std::vector<float> Evaluator::sample(const std::vector<MaterialParams>& material
 }
 
 void Evaluator::pdf(const std::vector<MaterialParams>& materials, const Samples& samples, float* pdf) {
-  Batch b = prepare(materials);
+  Batch b = prepare(materials, Kernels::None);
   const std::size_t count = samples.size();
   const std::uint32_t* material = samples.material.empty() ? nullptr : samples.material.data();
   if (material && samples.material.size() != count)
