@@ -244,7 +244,7 @@ Runtime::OpenCL::OpenCL(const std::string& selectorArg) {
 namespace {
 // Each evaluation path has a program of its own (eval/batch.hpp), so one set of materials and
 // options takes up to four entries, a tenth to a twentieth of the size of one holding every kernel
-// (0.2-0.4 MB against 3-4 MB with PoCL's binaries); the byte budget (BRDFCL_CACHE_MAX) bounds them too.
+// (mostly 0.1-0.5 MB against 3-4 MB with PoCL's binaries); the byte budget (BRDFCL_CACHE_MAX) bounds them too.
 constexpr std::size_t kCachedPrograms = 512;
 }  // namespace
 
