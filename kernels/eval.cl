@@ -9,6 +9,17 @@
 #define BRDFCL_ONE_MATERIAL 0
 #endif
 
+/* The entry points a program holds, as a mask of these bits (all without the define): the host
+   builds one program a path with only the kernels that path launches, so a device loads and
+   parses no more than it runs (host/src/eval/batch.hpp, EvalKernels). */
+#define BRDFCL_KERNELS_SAMPLES 1
+#define BRDFCL_KERNELS_ROWS 2
+#define BRDFCL_KERNELS_GRID 4
+#define BRDFCL_KERNELS_TABLE 8
+#ifndef BRDFCL_KERNELS
+#define BRDFCL_KERNELS 15
+#endif
+
 /* clang's non-temporal store on vector lanes (PoCL); other compilers store as usual. */
 #if defined(__clang__) && BRDFCL_W > 1
 #define STREAM_STORES 1
@@ -35,6 +46,7 @@ typedef uintw __attribute__((aligned(4))) uintw_plane;
    material, BRDFCL_ONE_MATERIAL: a branch here instead costs the gathering kernel ~10 %). Every
    plane is its own buffer, so callers can hand over their arrays in place and a plane stays
    under the device's largest allocation. */
+#if BRDFCL_KERNELS & BRDFCL_KERNELS_SAMPLES
 __kernel void eval_samples(__global const float* restrict Lx, __global const float* restrict Ly,
                            __global const float* restrict Lz, __global const float* restrict Vx,
                            __global const float* restrict Vy, __global const float* restrict Vz,
@@ -70,6 +82,7 @@ __kernel void eval_samples(__global const float* restrict Lx, __global const flo
   PLANE_STORE(f.g, i, out_g);
   PLANE_STORE(f.b, i, out_b);
 }
+#endif
 
 /* Lowers *bad_row to the first row (`first` is lane 0's) whose lane is set in `bad`. */
 BRDF_FN void report_bad_rows(intw bad, uint first, __global uint* bad_row) {
@@ -173,12 +186,14 @@ BRDF_FN void eval_rows_group(uint first, uint n, const int partial, __global con
 #define EVAL_ROWS_ARGS \
   L, L_at, V, V_at, index, index_at, index_longs, material_count, count, normalize, materials, sheen_e, sheen_e_size, \
       out, out_at, bad_row
+#if BRDFCL_KERNELS & BRDFCL_KERNELS_ROWS
 ROW_KERNELS(eval_rows,
             (__global const float* restrict L, uint L_at, __global const float* restrict V, uint V_at,
              __global const uint* restrict index, uint index_at, int index_longs, uint material_count, uint count,
              int normalize, __global const brdfcl_material* restrict materials, __global const float* restrict sheen_e,
              int sheen_e_size, __global float* restrict out, uint out_at, __global uint* restrict bad_row),
             EVAL_ROWS_ARGS)
+#endif
 
 /* Every material (global id 1, from `first_material`) x every
    row of L and V (global id 0), f written material-major: material k's row i at out row
@@ -202,12 +217,14 @@ BRDF_FN void eval_grid_rows_group(uint first, uint n, const int partial, __globa
 }
 #define EVAL_GRID_ROWS_ARGS \
   L, L_at, V, V_at, count, normalize, materials, first_material, sheen_e, sheen_e_size, out, out_at, out_rows, bad_row
+#if BRDFCL_KERNELS & BRDFCL_KERNELS_GRID
 ROW_KERNELS(eval_grid_rows,
             (__global const float* restrict L, uint L_at, __global const float* restrict V, uint V_at, uint count,
              int normalize, __global const brdfcl_material* restrict materials, uint first_material,
              __global const float* restrict sheen_e, int sheen_e_size, __global float* restrict out, uint out_at,
              ulong out_rows, __global uint* restrict bad_row),
             EVAL_GRID_ROWS_ARGS)
+#endif
 
 /* A samples file's rows as they lie in memory (a float32 C-order NPY of shape (count, 7)): the
    material index (a float that must hold an integer in [0, material_count)), then Lx Ly Lz Vx Vy
@@ -235,8 +252,10 @@ BRDF_FN void eval_table_rows_group(uint first, uint n, const int partial, __glob
               bad_row);
 }
 #define EVAL_TABLE_ROWS_ARGS rows, rows_at, material_count, count, materials, sheen_e, sheen_e_size, out, out_at, bad_row
+#if BRDFCL_KERNELS & BRDFCL_KERNELS_TABLE
 ROW_KERNELS(eval_table_rows,
             (__global const float* restrict rows, uint rows_at, uint material_count, uint count,
              __global const brdfcl_material* restrict materials, __global const float* restrict sheen_e,
              int sheen_e_size, __global float* restrict out, uint out_at, __global uint* restrict bad_row),
             EVAL_TABLE_ROWS_ARGS)
+#endif

@@ -436,6 +436,12 @@ BRDF_FN void pdf_rows_group(uint first, uint n, const int partial, __global cons
     if (first < count) name##_group(first, count - first, 1, ARGS);                       \
   }
 
+/* The entry points a program holds, as a mask (both without the define): 1 sample_rows, 2 pdf_rows,
+   so that `sample` and `pdf` each load only their own (host/src/eval/sampling.cpp). */
+#ifndef BRDFCL_SAMPLER_KERNELS
+#define BRDFCL_SAMPLER_KERNELS 3
+#endif
+#if BRDFCL_SAMPLER_KERNELS & 1
 #define SAMPLE_ROWS_ARGS V, index, u, count, materials, sheen_e, sheen_e_size, albedo_e, albedo_size, out
 SAMPLE_ROW_KERNELS(sample_rows,
                    (__global const float* restrict V, __global const uint* restrict index,
@@ -443,9 +449,12 @@ SAMPLE_ROW_KERNELS(sample_rows,
                     __global const float* restrict sheen_e, int sheen_e_size, __global const float* restrict albedo_e,
                     int albedo_size, __global float* restrict out),
                    SAMPLE_ROWS_ARGS)
+#endif
+#if BRDFCL_SAMPLER_KERNELS & 2
 #define PDF_ROWS_ARGS L, V, index, count, materials, albedo_e, albedo_size, out
 SAMPLE_ROW_KERNELS(pdf_rows,
                    (__global const float* restrict L, __global const float* restrict V,
                     __global const uint* restrict index, uint count, __global const brdfcl_material* restrict materials,
                     __global const float* restrict albedo_e, int albedo_size, __global float* restrict out),
                    PDF_ROWS_ARGS)
+#endif

@@ -197,14 +197,14 @@ TEST(Runtime, ProgramBinariesComeBackFromTheDiskCache) {
 
 }
 
-// The binaries are pruned to the most recently used 256 when a new one is stored.
+// The binaries are pruned to the most recently used 512 when a new one is stored.
 TEST(Runtime, ProgramBinaryCacheKeepsTheMostRecentlyUsed) {
   test::ScratchDir dir("binaries-pruned");
   ScratchCacheHome home(dir);
   const auto cache = std::filesystem::path(dir.path("brdfcl"));
   std::filesystem::create_directories(cache);
   const auto now = std::filesystem::file_time_type::clock::now();
-  for (int i = 0; i < 300; ++i) {
+  for (int i = 0; i < 600; ++i) {
     const auto p = cache / ("program_old_" + std::to_string(i) + ".bin");
     std::ofstream(p) << "old";
     std::filesystem::last_write_time(p, now - std::chrono::hours(1000 - i));
@@ -221,10 +221,10 @@ TEST(Runtime, ProgramBinaryCacheKeepsTheMostRecentlyUsed) {
     ++programs;
     fresh += name.rfind("program_old_", 0) != 0;
   }
-  EXPECT_EQ(programs, 256u);
+  EXPECT_EQ(programs, 512u);
   EXPECT_GE(fresh, 1u);
   EXPECT_FALSE(std::filesystem::exists(cache / "program_old_0.bin"));
-  EXPECT_TRUE(std::filesystem::exists(cache / "program_old_299.bin"));
+  EXPECT_TRUE(std::filesystem::exists(cache / "program_old_599.bin"));
   EXPECT_TRUE(std::filesystem::exists(cache / "sheen_e_kept.f32"));
 }
 

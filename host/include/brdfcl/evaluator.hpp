@@ -160,8 +160,9 @@ class Evaluator {
  private:
   friend class SoaBatch;
   struct Batch;
+  enum class Kernels : unsigned;  // which of eval.cl's entry points a batch's program holds (eval/batch.hpp)
   struct Planes;  // a batch's page-aligned host planes and the device buffers wrapping them
-  Batch prepare(const std::vector<MaterialParams>& materials);
+  Batch prepare(const std::vector<MaterialParams>& materials, Kernels kernels);
   // The pool of planes scratch batches reuse, so that repeated calls neither allocate nor fault
   // fresh pages: take returns idle planes of exactly `floats` per plane, or nullptr.
   std::unique_ptr<Planes> takePlanes(std::size_t floats);

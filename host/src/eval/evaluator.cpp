@@ -157,7 +157,7 @@ const SheenAlbedoTable& Evaluator::sheenAlbedo() {
   return *table_;
 }
 
-Evaluator::Batch Evaluator::prepare(const std::vector<MaterialParams>& materials) {
+Evaluator::Batch Evaluator::prepare(const std::vector<MaterialParams>& materials, Kernels kernels) {
   if (materials.empty()) throw Error("no materials to evaluate");
   for (std::size_t i = 0; i < materials.size(); ++i) checkMaterial(materials[i], i);
   const auto features = featuresOf(materials, options_.profile);
@@ -183,10 +183,12 @@ Evaluator::Batch Evaluator::prepare(const std::vector<MaterialParams>& materials
     b.table.insert(b.table.end(), lut.begin(), lut.end());
   }
   b.shape = laneShape(rt_.info());
+  if (kernels == Kernels::None) return b;
   try {
     // One material: every lane reads the same record (no gathers); indices are still checked.
     b.program = rt_.opencl().program("eval.cl", materialDefines(options_, features) + fmt::format(" -DBRDFCL_W={}", b.shape.lanes) +
-                                           (materials.size() == 1 ? " -DBRDFCL_ONE_MATERIAL=1" : ""),
+                                           (materials.size() == 1 ? " -DBRDFCL_ONE_MATERIAL=1" : "") +
+                                           fmt::format(" -DBRDFCL_KERNELS={}", unsigned(kernels)),
                                        Runtime::OpenCL::Arithmetic::Batch);
     const auto& ctx = rt_.opencl().context();
     b.materials = cl::Buffer(ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, b.packed.size() * sizeof(brdfcl_material),
@@ -217,7 +219,7 @@ SoaBatch::SoaBatch(Evaluator& evaluator, const std::vector<MaterialParams>& mate
   if (capacity > SIZE_MAX / 2)  // rounding up would wrap round: no such batch fits in memory
     throw Error(ErrorKind::Memory, fmt::format("out of host memory allocating {:.0f} MiB for a batch", double(capacity) * 4 / double(1 << 20)));
   device_ = std::make_unique<Device>();
-  device_->batch = ev_.prepare(materials);
+  device_->batch = ev_.prepare(materials, Evaluator::Kernels::Samples);
   packed_ = device_->batch.packed;
   tableValues_ = device_->batch.table;
   tableSize_ = device_->batch.tableSize;

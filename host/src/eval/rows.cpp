@@ -62,7 +62,7 @@ std::size_t Evaluator::evaluateRows(const std::vector<MaterialParams>& materials
   if (rows.count == 0) return 0;
   if (!rows.L || !rows.V || !rgb) throw Error("internal: rows without data", 3);
   if (rows.index && rows.index32) throw Error("internal: rows with two kinds of index", 3);
-  Batch b = prepare(materials);
+  Batch b = prepare(materials, Kernels::Rows);
   try {
     RowDriver run(rt_, b.program, "eval_rows", b.shape);
     const Column index = rows.index ? Column{rows.index, 8, 8} : Column{rows.index32, 4, 4};
@@ -91,7 +91,7 @@ void Evaluator::evaluate(const std::vector<MaterialParams>& materials, const Dev
   checkArray(rt_, rgb, "rgb", T::Float32, 3 * n, n);
   if (&rgb.impl() == &L.impl() || &rgb.impl() == &V.impl())
     throw Error("device array rgb must not be L or V; give the results their own array");
-  Batch b = prepare(materials);
+  Batch b = prepare(materials, Kernels::Rows);
   if (n == 0) return;
   std::size_t bad = n;
   try {
@@ -118,7 +118,7 @@ std::size_t Evaluator::evaluateTableRows(const std::vector<MaterialParams>& mate
                                          std::size_t count, float* rgb, std::size_t launch) {
   if (count == 0) return 0;
   if (!rows || !rgb) throw Error("internal: table rows without data", 3);
-  Batch b = prepare(materials);
+  Batch b = prepare(materials, Kernels::Table);
   try {
     RowDriver run(rt_, b.program, "eval_table_rows", b.shape);
     run.run(count, run.rowsPerLaunch(launchLimit(), launch, 28, 16), {{rows, 28}}, rgb, 12,
@@ -138,7 +138,7 @@ std::size_t Evaluator::evaluateGridRows(const std::vector<MaterialParams>& mater
   const std::size_t n = rows.count, nm = materialCount;
   if (n == 0 || nm == 0) return n;
   if (!rows.L || !rows.V || !rgb) throw Error("internal: rows without data", 3);
-  Batch b = prepare(materials);
+  Batch b = prepare(materials, Kernels::Grid);
   try {
     RowDriver run(rt_, b.program, "eval_grid_rows", b.shape);
     const std::size_t chunk = run.rowsPerLaunch(launchLimit(), rows.launch, 12, 16);

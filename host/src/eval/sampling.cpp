@@ -74,10 +74,14 @@ void Evaluator::drawUniforms(std::uint64_t seed, std::uint64_t firstRow, std::si
 }
 
 namespace {
+// The kernels of sample.cl a program holds (BRDFCL_SAMPLER_KERNELS): sampling and the pdf each
+// build their own, so a process loads and the device parses only the one it launches.
+constexpr unsigned kSampleKernels = 1, kPdfKernels = 2;
+
 // The sheen albedo table is the evaluator's where a material has sheen (or the draft), else a 2x2 dummy.
 SamplingBatch makeSamplingBatch(Runtime& rt, Evaluator& ev, const std::vector<MaterialParams>& materials,
                                 const std::vector<brdfcl_material>& packed, const std::vector<float>& table,
-                                int tableSize) {
+                                int tableSize, unsigned kernels) {
   const EvalOptions& options = ev.options();
   const FeatureSet features = featuresOf(materials, options.profile);
   const SheenAlbedoTable* albedo = features.sheen || features.draft ? &ev.sheenAlbedo() : nullptr;
@@ -90,7 +94,8 @@ SamplingBatch makeSamplingBatch(Runtime& rt, Evaluator& ev, const std::vector<Ma
     s.lanes = laneShape(rt.info()).lanes;
     s.program = rt.opencl().program("sample.cl", materialDefines(options, features) +
                                                      fmt::format(" -DBRDFCL_W={}", s.lanes) +
-                                                     (materials.size() == 1 ? " -DBRDFCL_ONE_MATERIAL=1" : ""));
+                                                     (materials.size() == 1 ? " -DBRDFCL_ONE_MATERIAL=1" : "") +
+                                                     fmt::format(" -DBRDFCL_SAMPLER_KERNELS={}", kernels));
     const auto& ctx = rt.opencl().context();
     s.materials = cl::Buffer(ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, packed.size() * sizeof(brdfcl_material),
                              const_cast<brdfcl_material*>(packed.data()));
@@ -110,10 +115,10 @@ RowDriver rowDriver(Runtime& rt, const SamplingBatch& s, const char* name) {
 
 void Evaluator::sample(const std::vector<MaterialParams>& materials, const std::uint32_t* material, const float* view,
                        const float* u, std::size_t count, float* out) {
-  Batch b = prepare(materials);
+  Batch b = prepare(materials, Kernels::None);
   checkSampleRows(view, material, u, count, materials.size());
   if (count == 0) return;
-  const SamplingBatch s = makeSamplingBatch(rt_, *this, materials, b.packed, b.table, b.tableSize);
+  const SamplingBatch s = makeSamplingBatch(rt_, *this, materials, b.packed, b.table, b.tableSize, kSampleKernels);
   try {
     RowDriver run = rowDriver(rt_, s, "sample_rows");
     run.run(count, run.rowsPerLaunch(launchLimit(), 0, 28, 1), {{view, 12}, {u, 12}, {material, 4}}, out, 28,
@@ -138,7 +143,7 @@ std::vector<float> Evaluator::sample(const std::vector<MaterialParams>& material
 }
 
 void Evaluator::pdf(const std::vector<MaterialParams>& materials, const Samples& samples, float* pdf) {
-  Batch b = prepare(materials);
+  Batch b = prepare(materials, Kernels::None);
   const std::size_t count = samples.size();
   const std::uint32_t* material = samples.material.empty() ? nullptr : samples.material.data();
   if (material && samples.material.size() != count)
@@ -149,7 +154,7 @@ void Evaluator::pdf(const std::vector<MaterialParams>& materials, const Samples&
     checkIndex(material, i, materials.size());
   }
   if (count == 0) return;
-  const SamplingBatch s = makeSamplingBatch(rt_, *this, materials, b.packed, b.table, b.tableSize);
+  const SamplingBatch s = makeSamplingBatch(rt_, *this, materials, b.packed, b.table, b.tableSize, kPdfKernels);
   try {
     RowDriver run = rowDriver(rt_, s, "pdf_rows");
     run.run(count, run.rowsPerLaunch(launchLimit(), 0, 12, 1),
@@ -193,7 +198,8 @@ SampleBatch::SampleBatch(Runtime& rt, Evaluator& ev, const std::vector<MaterialP
     throw Error(fmt::format("internal: {} sampling rows exceed one launch ({} at most on this device)", n, ev.launchLimit()), 3);
   s_->rt = &rt;
   s_->n = n;
-  s_->s = makeSamplingBatch(rt, ev, materials, b.packedMaterials(), b.sheenAlbedoValues(), b.sheenAlbedoSize());
+  s_->s = makeSamplingBatch(rt, ev, materials, b.packedMaterials(), b.sheenAlbedoValues(), b.sheenAlbedoSize(),
+                             kSampleKernels);
   try {
     const auto& ctx = rt.opencl().context();
     s_->view = deviceCopy(ctx, view.data(), 4 * view.size());

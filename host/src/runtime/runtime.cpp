@@ -242,8 +242,10 @@ Runtime::OpenCL::OpenCL(const std::string& selectorArg) {
 }
 
 namespace {
-// About 130 MB of binaries at PoCL's sizes; the whole test suite builds some 210 variants.
-constexpr std::size_t kCachedPrograms = 256;
+// Each evaluation path has a program of its own (eval/batch.hpp), so one set of materials and
+// options takes up to four entries, a tenth to a twentieth of the size of one holding every kernel
+// (mostly 0.1-0.5 MB against 3-4 MB with PoCL's binaries); the byte budget (BRDFCL_CACHE_MAX) bounds them too.
+constexpr std::size_t kCachedPrograms = 512;
 }  // namespace
 
 std::string Runtime::OpenCL::mathOptions(Arithmetic arithmetic) const {
