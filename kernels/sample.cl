@@ -4,9 +4,6 @@
    width; ibl_exact.cl includes it at 1): every lobe's direction is drawn where any lane chose it
    and each lane keeps its own by select, so the CPU build runs as vector code. */
 #include "brdf/sampling.h"
-/* f's half vector (the Schlick weight's 1/|h|) with the samplers' 1/sqrt: one Newton step from the
-   hardware's estimate on AVX-512 instead of three, at the head of f's chain. */
-#define BRDFCL_GEOMETRY_RSQRT sampler_rsqrt
 #include "brdf/material.h"
 #include "common/rows.h"
 

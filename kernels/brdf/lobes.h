@@ -32,10 +32,6 @@ typedef struct {
   realw NdotL, NdotV, hxy2, hn2, h2, w;
 } lobe_geometry;
 
-/* The sampler's program (sample.cl) takes its own, shorter 1/sqrt here; eval's stays brdf_rsqrt. */
-#ifndef BRDFCL_GEOMETRY_RSQRT
-#define BRDFCL_GEOMETRY_RSQRT brdf_rsqrt
-#endif
 BRDF_FN lobe_geometry lobe_geometry_of(vec3w L, vec3w V) {
   lobe_geometry g;
   g.L = L;
@@ -47,7 +43,7 @@ BRDF_FN lobe_geometry lobe_geometry_of(vec3w L, vec3w V) {
   g.hxy2 = h.x * h.x + h.y * h.y;
   g.hn2 = h.z * h.z;
   g.h2 = g.hxy2 + g.hn2;
-  realw inv_h = BRDFCL_GEOMETRY_RSQRT(g.h2);
+  realw inv_h = brdf_rsqrt(g.h2);
   /* 1 - V.H = |V - H|^2 / 2 for unit vectors: no cancellation as H -> V. At most 1 (V.H >= 0):
      the rounding of inv_h must not take it above, where 1 - F would turn negative. */
   realw dx = V.x - h.x * inv_h, dy = V.y - h.y * inv_h, dz = V.z - h.z * inv_h;

@@ -16,36 +16,13 @@ BRDF_FN vec3w vec3w_normalize(vec3w v) {
   return o;
 }
 
-/* 1 / sqrt(x) for the samplers' normalizations. On AVX-512 (16 lanes) the hardware's 14-bit
-   estimate (vrsqrt14ps, relative error below 2^-14) and one Newton step, about float's rounding,
-   where brdf_rsqrt's bit-pattern estimate needs three: two dependent steps fewer in each chain
-   through the stretched view, the microfacet normal and f's half vector. */
-#if BRDFCL_W == 16 && defined(__clang__) && defined(__AVX512F__)
-typedef float sampler_v16sf __attribute__((__vector_size__(64)));
-typedef union {
-  realw w;
-  sampler_v16sf v;
-} sampler_v16;
-BRDF_FN realw sampler_rsqrt(realw x) {
-  sampler_v16 in, est;
-  in.w = x;
-  est.v = __builtin_ia32_rsqrt14ps512_mask(in.v, in.v, (ushort)0xffff);
-  /* The step as y + y e, e = 1/2 - x y^2 / 2 small: its rounding stays near half an ulp, where
-     y (3/2 - x y^2 / 2) rounds at full size. */
-  realw y = est.w, e = fma(-0.5f * x, y * y, (realw)(0.5f));
-  return fma(y, e, y);
-}
-#else
-BRDF_FN realw sampler_rsqrt(realw x) { return brdf_rsqrt(x); }
-#endif
-
 /* The samplers' own normalizations (the stretched view, the microfacet normal) without a division:
    rsqrt is a square root and a correctly rounded division on CPUs
    (-cl-fp32-correctly-rounded-divide-sqrt), and L = 2 (V.H) H - V is as good as H is. The caller's
    V keeps vec3w_normalize: the pdf of a sharp lobe at a grazing view is ill-conditioned in V (h = L +
    V cancels), and `brdfcl pdf` must normalize V as `brdfcl sample` did. */
 BRDF_FN vec3w vec3w_normalize_fast(vec3w v) {
-  realw inv = sampler_rsqrt(max(dot3w(v, v), (realw)(1.0e-30f)));
+  realw inv = brdf_rsqrt(max(dot3w(v, v), (realw)(1.0e-30f)));
   vec3w o = {v.x * inv, v.y * inv, v.z * inv};
   return o;
 }
@@ -174,7 +151,7 @@ BRDF_FN realw BoundedVNDFKPartsOfUnnormalized(vec3w Ve, realw ax, realw ay, real
   realw a = clamp(min(ax, ay), (realw)(0.0f), (realw)(1.0f)), a2 = a * a;
   /* |Ve| and |Ve.xy| as x / sqrt(x), off the divider that V's exact normalization holds. */
   realw q2 = Ve.x * Ve.x + Ve.y * Ve.y, r2 = q2 + Ve.z * Ve.z;
-  realw rq = r2 * sampler_rsqrt(r2) + q2 * sampler_rsqrt(max(q2, (realw)(1.0e-30f))), rq2 = rq * rq;
+  realw rq = r2 * brdf_rsqrt(r2) + q2 * brdf_rsqrt(max(q2, (realw)(1.0e-30f))), rq2 = rq * rq;
   *den = rq2 + a2 * (Ve.z * Ve.z);
   return (1.0f - a2) * rq2;
 }
