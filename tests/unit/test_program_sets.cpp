@@ -16,33 +16,14 @@
 #include "host/src/runtime/opencl.hpp"
 #include "npy.hpp"
 #include "process.hpp"
+#include "scratch_cache_home.hpp"
 #include "support.hpp"
 
 using namespace brdfcl;
+using brdfcl::test::ScratchCacheHome;
 namespace fs = std::filesystem;
 
 namespace {
-
-// brdfcl's disk cache under a scratch directory for one test. PoCL's own cache stays where the
-// shared runtime opened it, so only brdfcl's programs start cold.
-class ScratchCacheHome {
- public:
-  explicit ScratchCacheHome(const test::ScratchDir& dir) : had_(std::getenv("XDG_CACHE_HOME") != nullptr) {
-    test::runtime();  // PoCL reads its cache folder once, at the first OpenCL call
-    if (had_) saved_ = std::getenv("XDG_CACHE_HOME");
-    ::setenv("XDG_CACHE_HOME", dir.dir().c_str(), 1);
-  }
-  ~ScratchCacheHome() {
-    if (had_) ::setenv("XDG_CACHE_HOME", saved_.c_str(), 1);
-    else ::unsetenv("XDG_CACHE_HOME");
-  }
-  ScratchCacheHome(const ScratchCacheHome&) = delete;
-  ScratchCacheHome& operator=(const ScratchCacheHome&) = delete;
-
- private:
-  bool had_;
-  std::string saved_;
-};
 
 const char* const kNoBinaries = "the device hands out no program binaries, so brdfcl caches none";
 

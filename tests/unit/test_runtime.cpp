@@ -16,6 +16,7 @@
 #include "host/src/runtime/opencl.hpp"
 #include "host/src/io/disk_cache.hpp"
 #include "process.hpp"
+#include "scratch_cache_home.hpp"
 #include "support.hpp"
 
 using namespace brdfcl;
@@ -23,27 +24,7 @@ using namespace brdfcl;
 namespace brdfcl::detail {
 const std::map<std::string, std::string>& embeddedKernels();
 }
-
-namespace {
-// brdfcl's disk cache moved under a scratch directory for one test, and put back after it.
-class ScratchCacheHome {
- public:
-  explicit ScratchCacheHome(const test::ScratchDir& dir) : had_(std::getenv("XDG_CACHE_HOME") != nullptr) {
-    if (had_) saved_ = std::getenv("XDG_CACHE_HOME");
-    ::setenv("XDG_CACHE_HOME", dir.dir().c_str(), 1);
-  }
-  ~ScratchCacheHome() {
-    if (had_) ::setenv("XDG_CACHE_HOME", saved_.c_str(), 1);
-    else ::unsetenv("XDG_CACHE_HOME");
-  }
-  ScratchCacheHome(const ScratchCacheHome&) = delete;
-  ScratchCacheHome& operator=(const ScratchCacheHome&) = delete;
-
- private:
-  bool had_;
-  std::string saved_;
-};
-}  // namespace
+using brdfcl::test::ScratchCacheHome;
 
 TEST(Runtime, ListsAtLeastOneDevice) {
   auto devices = listDevices();
