@@ -11,7 +11,7 @@
 
 /* The entry points a program holds, as a mask of these bits (all without the define): the host
    builds one program a path with only the kernels that path launches, so a device loads and
-   parses no more than it runs (host/src/eval/batch.hpp, EvalKernels). */
+   parses no more than it runs (host/src/eval/batch.hpp, Evaluator::Kernels). */
 #define BRDFCL_KERNELS_SAMPLES 1
 #define BRDFCL_KERNELS_ROWS 2
 #define BRDFCL_KERNELS_GRID 4
@@ -25,21 +25,6 @@
 #define STREAM_STORES 1
 #else
 #define STREAM_STORES 0
-#endif
-
-/* A plane's lanes as one vector load or store: PoCL's vload16 and vstore16 know only the float's
-   alignment and assemble the vector from 8-byte pieces (8 loads and 7 shuffles a plane); a vector
-   type aligned like a float lets the compiler issue one unaligned vector access. */
-#if defined(__clang__) && BRDFCL_W > 1
-typedef realw __attribute__((aligned(4))) realw_plane;
-typedef uintw __attribute__((aligned(4))) uintw_plane;
-#define PLANE_LOAD(i, p) (((__global const realw_plane*)(p))[i])
-#define INDEX_LOAD(i, p) (((__global const uintw_plane*)(p))[i])
-#define PLANE_STORE(v, i, p) (((__global realw_plane*)(p))[i] = (v))
-#else
-#define PLANE_LOAD VLOADW
-#define INDEX_LOAD VLOADW
-#define PLANE_STORE VSTOREW
 #endif
 
 /* One material per sample, gathered by index (read once for all lanes in a program built for one

@@ -309,18 +309,10 @@ BRDF_FN material_lanes sample_material(__global const brdfcl_material* materials
                               __builtin_shufflevector(o##6, o##6, ROWS_LANES(OUT7_PAIR, q, 3)),              \
                               ROWS_LANES(OUT7_HIGH, q, 0)),                                                  \
       ROWS_LANES(OUT7_HALF, q, 0))
-/* PoCL's vstore16 knows only a float's alignment and stores a vector in three pieces (16, 16 and 32
-   bytes); a vector type aligned like a float is one unaligned vector store (eval.cl's planes). */
-#if defined(__clang__)
-typedef realw __attribute__((aligned(4))) realw_row_vector;
-#define OUT7_VSTORE(v, i, p) (((__global realw_row_vector*)(p))[i] = (v))
-#else
-#define OUT7_VSTORE VSTOREW
-#endif
 #define OUT7_STORE(o, p)                                                                                          \
-  OUT7_VSTORE(OUT7_VECTOR(o, 0), 0, p), OUT7_VSTORE(OUT7_VECTOR(o, 1), 1, p), OUT7_VSTORE(OUT7_VECTOR(o, 2), 2, p), \
-      OUT7_VSTORE(OUT7_VECTOR(o, 3), 3, p), OUT7_VSTORE(OUT7_VECTOR(o, 4), 4, p),                                 \
-      OUT7_VSTORE(OUT7_VECTOR(o, 5), 5, p), OUT7_VSTORE(OUT7_VECTOR(o, 6), 6, p)
+  PLANE_STORE(OUT7_VECTOR(o, 0), 0, p), PLANE_STORE(OUT7_VECTOR(o, 1), 1, p), PLANE_STORE(OUT7_VECTOR(o, 2), 2, p), \
+      PLANE_STORE(OUT7_VECTOR(o, 3), 3, p), PLANE_STORE(OUT7_VECTOR(o, 4), 4, p),                                 \
+      PLANE_STORE(OUT7_VECTOR(o, 5), 5, p), PLANE_STORE(OUT7_VECTOR(o, 6), 6, p)
 #endif
 
 /* Rows of V (3 floats, unit vectors) and u (3 floats in [0, 1)): u3 picks the lobe, u1 and u2

@@ -83,6 +83,12 @@ BRDF_FN material_lanes material_splat(__global const brdfcl_material* m) { BRDFC
 BRDF_FN material_lanes material_splat_private(const brdfcl_material* m) { BRDFCL_SPLAT_BODY }
 #endif
 
+/* The lanes of the record's flags (BRDFCL_MAT_*) that the lobes read as factors. */
+BRDF_FN void material_flag_lanes(material_lanes* out, intw flags) {
+  out->draft = select((realw)(0.0f), (realw)(1.0f), (flags & (int)BRDFCL_MAT_DRAFT_SHEEN) != 0);
+  out->aniso_ext = select((realw)(0.0f), (realw)(1.0f), (flags & (int)BRDFCL_MAT_ANISOTROPY) != 0);
+}
+
 /* Each lane has its own material index. Sixteen lanes under clang (PoCL) read each lane's record in
    32-byte pieces and transpose them into field lanes: a 16 x 8 block costs 16 loads and 32
    shuffles, where a gather costs 16 loads a field and its latency heads every chain. Other widths
@@ -171,8 +177,7 @@ BRDF_FN material_lanes material_gather(__global const brdfcl_material* materials
 #define BRDFCL_PIECE_LANE(name, field_) out.name = field[__builtin_offsetof(brdfcl_material, field_) / sizeof(float)];
   BRDFCL_MATERIAL_LANES(BRDFCL_PIECE_LANE)
   intw flags = as_int16(field[__builtin_offsetof(brdfcl_material, flags) / sizeof(float)]);
-  out.draft = select((realw)(0.0f), (realw)(1.0f), (flags & (int)BRDFCL_MAT_DRAFT_SHEEN) != 0);
-  out.aniso_ext = select((realw)(0.0f), (realw)(1.0f), (flags & (int)BRDFCL_MAT_ANISOTROPY) != 0);
+  material_flag_lanes(&out, flags);
   return out;
 }
 #else
@@ -182,8 +187,7 @@ BRDF_FN material_lanes material_gather(__global const brdfcl_material* materials
 #define BRDFCL_GATHER_LANE(name, field) out.name = GATHERW((__global const float*)&materials->field, at);
   BRDFCL_MATERIAL_LANES(BRDFCL_GATHER_LANE)
   intw flags = AS_INTW(GATHERW((__global const float*)&materials->flags, at));
-  out.draft = select((realw)(0.0f), (realw)(1.0f), (flags & (int)BRDFCL_MAT_DRAFT_SHEEN) != 0);
-  out.aniso_ext = select((realw)(0.0f), (realw)(1.0f), (flags & (int)BRDFCL_MAT_ANISOTROPY) != 0);
+  material_flag_lanes(&out, flags);
   return out;
 }
 #endif

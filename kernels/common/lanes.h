@@ -66,6 +66,22 @@ typedef long16 longw;
 #error "BRDFCL_W must be 1, 4, 8 or 16"
 #endif
 
+/* Lanes p[W i .. W i + W) as one vector load or store (a plane's lanes, a group's output rows):
+   PoCL's vload16 and vstore16 know only the float's alignment and assemble the vector from 8-byte
+   pieces (8 loads and 7 shuffles a plane); a vector type aligned like a float lets the compiler
+   issue one unaligned vector access. */
+#if defined(__OPENCL_VERSION__) && defined(__clang__) && BRDFCL_W > 1
+typedef realw __attribute__((aligned(4))) realw_plane;
+typedef uintw __attribute__((aligned(4))) uintw_plane;
+#define PLANE_LOAD(i, p) (((__global const realw_plane*)(p))[i])
+#define INDEX_LOAD(i, p) (((__global const uintw_plane*)(p))[i])
+#define PLANE_STORE(v, i, p) (((__global realw_plane*)(p))[i] = (v))
+#else
+#define PLANE_LOAD VLOADW
+#define INDEX_LOAD VLOADW
+#define PLANE_STORE VSTOREW
+#endif
+
 /* p[i] for each lane's index, written as one vector expression so the compiler can emit a
    hardware gather instead of a loop through private memory. */
 #if BRDFCL_W == 1
