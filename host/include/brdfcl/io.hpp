@@ -6,6 +6,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "brdfcl/material.hpp"
@@ -38,6 +39,38 @@ std::vector<MaterialParams> readMaterials(const std::string& path,
                                           const std::function<void(const std::string&)>& warn = {});
 std::vector<MaterialParams> parseMaterials(const std::string& jsonText, const std::string& sourceName,
                                            const std::function<void(const std::string&)>& warn = {});
+
+// Memory for a chunk of rows that is filled before it is read: elements are left uninitialized
+// (a 28 MB chunk zero-filled and then overwritten by a read cost a pass over it and a fault per
+// page), and blocks of 2 MiB or more are mapped 2 MiB-aligned and offered to transparent huge
+// pages, so that a first touch faults a few large pages rather than thousands of small ones.
+namespace detail {
+void* allocateChunk(std::size_t bytes);
+void freeChunk(void* p, std::size_t bytes) noexcept;
+}  // namespace detail
+template <typename T>
+struct ChunkAllocator {
+  using value_type = T;
+  ChunkAllocator() = default;
+  template <typename U>
+  ChunkAllocator(const ChunkAllocator<U>&) noexcept {}
+  T* allocate(std::size_t n) { return static_cast<T*>(detail::allocateChunk(n * sizeof(T))); }
+  void deallocate(T* p, std::size_t n) noexcept { detail::freeChunk(p, n * sizeof(T)); }
+  template <typename U>
+  void construct(U* p) noexcept {
+    ::new (static_cast<void*>(p)) U;  // default-initialized: indeterminate until written
+  }
+  template <typename U, typename... A>
+  void construct(U* p, A&&... a) {
+    ::new (static_cast<void*>(p)) U(std::forward<A>(a)...);
+  }
+  template <typename U>
+  bool operator==(const ChunkAllocator<U>&) const noexcept { return true; }
+  template <typename U>
+  bool operator!=(const ChunkAllocator<U>&) const noexcept { return false; }
+};
+template <typename T>
+using ChunkVector = std::vector<T, ChunkAllocator<T>>;
 
 // Samples in the shading frame N = +Z, T = +X, B = +Y. L points to the light, V to the viewer.
 struct Samples {
@@ -97,7 +130,7 @@ class SampleStream {
   // throws what next() would have thrown for row i of `rows` (e.g. "s.npy: row 12: field 'Lx'
   // is not finite: nan"). next() and nextRows share one position.
   struct RawRows {
-    std::vector<float> data;  // count rows of 7 floats: material, Lx Ly Lz Vx Vy Vz
+    ChunkVector<float> data;  // count rows of 7 floats: material, Lx Ly Lz Vx Vy Vz
     std::size_t count = 0, firstRow = 0;
   };
   bool hasRawRows() const;
