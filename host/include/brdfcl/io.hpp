@@ -135,6 +135,11 @@ class SampleStream {
   };
   bool hasRawRows() const;
   bool nextRows(std::size_t maxRows, RawRows& out);
+  // Starts reading the next maxRows raw rows on a thread of its own (where hasRawRows(); else it
+  // does nothing), so that the read overlaps what the caller does next, such as opening the
+  // device. The next nextRows(maxRows) returns them, or throws the read's error; any other call
+  // first waits for the read and drops it.
+  void readAhead(std::size_t maxRows);
   [[noreturn]] void throwRowError(const RawRows& rows, std::size_t i) const;
 
   // The file's rows without parsing them: NPY's N; for a CSV, the lines after the header up to
