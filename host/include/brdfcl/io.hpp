@@ -197,6 +197,14 @@ class ResultWriter {
   ResultWriter& operator=(const ResultWriter&) = delete;
 
   void append(const float* rgb, std::size_t rows);  // 3 floats a row
+  // append() from memory the writer may also use as scratch: it may overwrite the
+  // kInPlaceHeadroom bytes before rgb (and rgb's rows). An NPY file written with O_DIRECT then
+  // goes to the disk from rgb itself, without a copy, when rgb's address and its offset in the
+  // file are congruent modulo kInPlaceHeadroom; otherwise this is append(). appendOffset() is
+  // the file offset the next append starts at (header included), for placing rgb.
+  static constexpr std::size_t kInPlaceHeadroom = 4096;
+  void appendInPlace(float* rgb, std::size_t rows);
+  std::size_t appendOffset() const;
   std::size_t rows() const;
   void commit();
 

@@ -3,6 +3,7 @@
 #include "brdfcl/stream.hpp"
 
 #include <algorithm>
+#include <cstdint>
 #include <functional>
 #include <memory>
 #include <future>
@@ -102,7 +103,12 @@ StreamStats stream(const std::vector<MaterialParams>& materials, SampleStream& s
   const auto policy = options.overlap ? std::launch::async : std::launch::deferred;
   Work work[2];
   std::vector<float> rgb[2];
-  ChunkVector<float> rawRgb[2];  // a file's raw rows' results, written by the device before read
+  // A file's raw rows' results, written by the device before they are read, each at the address
+  // that makes the writer's appendInPlace write them without a copy: congruent to its offset in
+  // the file modulo kInPlaceHeadroom, after that many bytes of headroom.
+  ChunkVector<float> rawRgb[2];
+  constexpr std::size_t kHead = ResultWriter::kInPlaceHeadroom;
+  std::size_t fileOffset = out.appendOffset();
   std::future<bool> reading = std::async(policy, produce, std::ref(work[0]));
   std::future<void> writing;
   for (std::size_t k = 0;; ++k) {
@@ -118,12 +124,14 @@ StreamStats stream(const std::vector<MaterialParams>& materials, SampleStream& s
     if (raw) {
       read = w.raw.count;
       ChunkVector<float>& f = rawRgb[k % 2];
-      f.resize(3 * read);
-      float* at = f.data();
+      f.resize((2 * kHead + 12 * read) / sizeof(float));
+      const std::size_t misalign = (fileOffset - reinterpret_cast<std::uintptr_t>(f.data())) % kHead;
+      float* at = f.data() + (kHead + misalign) / sizeof(float);  // offsets are whole floats
       const std::size_t bad = evaluate.rows(w.raw, at);
       if (bad < read) samples.throwRowError(w.raw, bad);
       rows = at;
       count = read;
+      fileOffset += 12 * read;
     } else {
       if (!options.grid) {
         result.resize(3 * dirs.size());
@@ -139,7 +147,12 @@ StreamStats stream(const std::vector<MaterialParams>& materials, SampleStream& s
     ++stats.chunks;
 
     if (writing.valid()) writing.get();  // frees slot (k + 1) % 2 for the next round
-    writing = std::async(policy, [&out, rows, count] { out.append(rows, count); });
+    writing = std::async(policy, [&out, rows, count, raw] {
+      if (raw)
+        out.appendInPlace(rows, count);
+      else
+        out.append(rows, count);
+    });
   }
   if (writing.valid()) writing.get();
   return stats;
