@@ -136,6 +136,8 @@ void addEvalCommand(CLI::App& app) {
     so.chunk = static_cast<std::size_t>(args->chunk);
     so.grid = args->grid;
     if (isDeviceList(args->device)) return evaluateOnDevices(args->device, o, materials, samples, args->out, so);
+    // The first chunk is read while the device opens, which takes one core for tens of ms.
+    if (!so.grid) samples.readAhead(so.chunk);
     Runtime rt(args->device);
     Evaluator evaluator(rt, o);
     ResultWriter out(args->out);

@@ -6,6 +6,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "brdfcl/material.hpp"
@@ -38,6 +39,38 @@ std::vector<MaterialParams> readMaterials(const std::string& path,
                                           const std::function<void(const std::string&)>& warn = {});
 std::vector<MaterialParams> parseMaterials(const std::string& jsonText, const std::string& sourceName,
                                            const std::function<void(const std::string&)>& warn = {});
+
+// Memory for a chunk of rows that is filled before it is read: elements are left uninitialized
+// (a 28 MB chunk zero-filled and then overwritten by a read cost a pass over it and a fault per
+// page), and blocks of 2 MiB or more are mapped 2 MiB-aligned and offered to transparent huge
+// pages, so that a first touch faults a few large pages rather than thousands of small ones.
+namespace detail {
+void* allocateChunk(std::size_t bytes);
+void freeChunk(void* p, std::size_t bytes) noexcept;
+}  // namespace detail
+template <typename T>
+struct ChunkAllocator {
+  using value_type = T;
+  ChunkAllocator() = default;
+  template <typename U>
+  ChunkAllocator(const ChunkAllocator<U>&) noexcept {}
+  T* allocate(std::size_t n) { return static_cast<T*>(detail::allocateChunk(n * sizeof(T))); }
+  void deallocate(T* p, std::size_t n) noexcept { detail::freeChunk(p, n * sizeof(T)); }
+  template <typename U>
+  void construct(U* p) noexcept {
+    ::new (static_cast<void*>(p)) U;  // default-initialized: indeterminate until written
+  }
+  template <typename U, typename... A>
+  void construct(U* p, A&&... a) {
+    ::new (static_cast<void*>(p)) U(std::forward<A>(a)...);
+  }
+  template <typename U>
+  bool operator==(const ChunkAllocator<U>&) const noexcept { return true; }
+  template <typename U>
+  bool operator!=(const ChunkAllocator<U>&) const noexcept { return false; }
+};
+template <typename T>
+using ChunkVector = std::vector<T, ChunkAllocator<T>>;
 
 // Samples in the shading frame N = +Z, T = +X, B = +Y. L points to the light, V to the viewer.
 struct Samples {
@@ -97,11 +130,16 @@ class SampleStream {
   // throws what next() would have thrown for row i of `rows` (e.g. "s.npy: row 12: field 'Lx'
   // is not finite: nan"). next() and nextRows share one position.
   struct RawRows {
-    std::vector<float> data;  // count rows of 7 floats: material, Lx Ly Lz Vx Vy Vz
+    ChunkVector<float> data;  // count rows of 7 floats: material, Lx Ly Lz Vx Vy Vz
     std::size_t count = 0, firstRow = 0;
   };
   bool hasRawRows() const;
   bool nextRows(std::size_t maxRows, RawRows& out);
+  // Starts reading the next maxRows raw rows on a thread of its own (where hasRawRows(); else it
+  // does nothing), so that the read overlaps what the caller does next, such as opening the
+  // device. The next nextRows(maxRows) returns them, or throws the read's error; any other call
+  // first waits for the read and drops it.
+  void readAhead(std::size_t maxRows);
   [[noreturn]] void throwRowError(const RawRows& rows, std::size_t i) const;
 
   // The file's rows without parsing them: NPY's N; for a CSV, the lines after the header up to
@@ -159,6 +197,14 @@ class ResultWriter {
   ResultWriter& operator=(const ResultWriter&) = delete;
 
   void append(const float* rgb, std::size_t rows);  // 3 floats a row
+  // append() from memory the writer may also use as scratch: it may overwrite the
+  // kInPlaceHeadroom bytes before rgb (and rgb's rows). An NPY file written with O_DIRECT then
+  // goes to the disk from rgb itself, without a copy, when rgb's address and its offset in the
+  // file are congruent modulo kInPlaceHeadroom; otherwise this is append(). appendOffset() is
+  // the file offset the next append starts at (header included), for placing rgb.
+  static constexpr std::size_t kInPlaceHeadroom = 4096;
+  void appendInPlace(float* rgb, std::size_t rows);
+  std::size_t appendOffset() const;
   std::size_t rows() const;
   void commit();
 

@@ -3,6 +3,7 @@
 #include "brdfcl/stream.hpp"
 
 #include <algorithm>
+#include <cstdint>
 #include <functional>
 #include <memory>
 #include <future>
@@ -102,6 +103,12 @@ StreamStats stream(const std::vector<MaterialParams>& materials, SampleStream& s
   const auto policy = options.overlap ? std::launch::async : std::launch::deferred;
   Work work[2];
   std::vector<float> rgb[2];
+  // A file's raw rows' results, written by the device before they are read, each at the address
+  // that makes the writer's appendInPlace write them without a copy: congruent to its offset in
+  // the file modulo kInPlaceHeadroom, after that many bytes of headroom.
+  ChunkVector<float> rawRgb[2];
+  constexpr std::size_t kHead = ResultWriter::kInPlaceHeadroom;
+  std::size_t fileOffset = out.appendOffset();
   std::future<bool> reading = std::async(policy, produce, std::ref(work[0]));
   std::future<void> writing;
   for (std::size_t k = 0;; ++k) {
@@ -112,23 +119,40 @@ StreamStats stream(const std::vector<MaterialParams>& materials, SampleStream& s
     const Samples& dirs = w.directions();
     std::vector<float>& result = rgb[k % 2];
     std::size_t read = dirs.size();
+    float* rows = nullptr;  // the results to write
+    std::size_t count = 0;
     if (raw) {
       read = w.raw.count;
-      result.resize(3 * read);
-      const std::size_t bad = evaluate.rows(w.raw, result.data());
+      ChunkVector<float>& f = rawRgb[k % 2];
+      f.resize((2 * kHead + 12 * read) / sizeof(float));
+      const std::size_t misalign = (fileOffset - reinterpret_cast<std::uintptr_t>(f.data())) % kHead;
+      float* at = f.data() + (kHead + misalign) / sizeof(float);  // offsets are whole floats
+      const std::size_t bad = evaluate.rows(w.raw, at);
       if (bad < read) samples.throwRowError(w.raw, bad);
-    } else if (!options.grid) {
-      result.resize(3 * dirs.size());
-      evaluate.batch(dirs, result.data());
+      rows = at;
+      count = read;
+      fileOffset += 12 * read;
     } else {
-      result = evaluate.grid(dirs, w.m0, w.mc);
+      if (!options.grid) {
+        result.resize(3 * dirs.size());
+        evaluate.batch(dirs, result.data());
+      } else {
+        result = evaluate.grid(dirs, w.m0, w.mc);
+      }
+      rows = result.data();
+      count = result.size() / 3;
     }
     if (!options.grid || w.m0 == mBegin) stats.samples += read;
-    stats.rows += result.size() / 3;
+    stats.rows += count;
     ++stats.chunks;
 
-    if (writing.valid()) writing.get();  // frees rgb[(k + 1) % 2] for the next round
-    writing = std::async(policy, [&out, &result] { out.append(result.data(), result.size() / 3); });
+    if (writing.valid()) writing.get();  // frees slot (k + 1) % 2 for the next round
+    writing = std::async(policy, [&out, rows, count, raw] {
+      if (raw)
+        out.appendInPlace(rows, count);
+      else
+        out.append(rows, count);
+    });
   }
   if (writing.valid()) writing.get();
   return stats;

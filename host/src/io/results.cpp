@@ -65,6 +65,7 @@ class OutputFile {
 
   void append(const void* p, std::size_t n) {
     if (n == 0) return;  // p may be the null data() of an empty vector
+    appended_ += n;
     const char* c = static_cast<const char*>(p);
     if (!direct_ && n > kBuffer - used_) {
       flush();
@@ -80,6 +81,30 @@ class OutputFile {
       if (used_ == kBuffer) flush();
     }
   }
+  // append() of p[0, n) with p[-kAlign, 0) free to use: when p lies at its file offset modulo
+  // kAlign, the partial block buffered so far is put in front of it and the whole blocks go to
+  // the disk from p itself; the partial block at the end is kept for the next append.
+  void appendInPlace(char* p, std::size_t n) {
+    const std::size_t carry = used_ % kAlign;
+    if (!direct_ || n < kAlign || (reinterpret_cast<std::uintptr_t>(p) - carry) % kAlign != 0) {
+      append(p, n);
+      return;
+    }
+    flushWholeBlocks();
+    if (!direct_) {
+      append(p, n);
+      return;
+    }
+    appended_ += n;
+    char* start = p - carry;
+    std::memcpy(start, buf_, carry);
+    const std::size_t total = carry + n, whole = total / kAlign * kAlign;
+    const std::size_t done = writeDirect(start, whole);
+    writeAll(start + done, whole - done);
+    used_ = total - whole;
+    std::memcpy(buf_, start + whole, used_);
+  }
+  std::size_t appended() const { return appended_; }
   // Overwrites bytes already appended (the NPY header once the row count is known).
   void patch(std::size_t offset, const void* p, std::size_t n) {
     flush();
@@ -118,6 +143,15 @@ class OutputFile {
     }
     writeAll(p, n);
     used_ = 0;
+  }
+  // The whole blocks of the buffer, keeping its partial block at the front.
+  void flushWholeBlocks() {
+    const std::size_t whole = used_ / kAlign * kAlign;
+    if (whole == 0) return;
+    const std::size_t done = writeDirect(buf_, whole);
+    writeAll(buf_ + done, whole - done);
+    used_ -= whole;
+    std::memmove(buf_, buf_ + whole, used_);
   }
   // Whole blocks with O_DIRECT; returns how much was written before the filesystem declined
   // (EINVAL: no O_DIRECT here) or wrote short (a size limit, a full disk), after which this file
@@ -169,6 +203,7 @@ class OutputFile {
   bool direct_ = false;
   char* buf_ = nullptr;
   std::size_t used_ = 0;
+  std::size_t appended_ = 0;  // bytes appended in all, the file offset the next append starts at
 };
 
 std::string npyHeader(std::size_t rows) { return detail::npyHeader(rows, 3); }
@@ -254,6 +289,15 @@ ResultWriter::~ResultWriter() {
 }
 
 std::size_t ResultWriter::rows() const { return impl_->rows; }
+
+std::size_t ResultWriter::appendOffset() const { return impl_->file ? impl_->file->appended() : 0; }
+
+void ResultWriter::appendInPlace(float* rgb, std::size_t rows) {
+  if (impl_->committed) throw std::logic_error("ResultWriter::appendInPlace after commit");
+  if (!impl_->npy) return append(rgb, rows);
+  impl_->file->appendInPlace(reinterpret_cast<char*>(rgb), rows * 3 * sizeof(float));
+  impl_->rows += rows;
+}
 
 void ResultWriter::append(const float* rgb, std::size_t rows) {
   if (impl_->committed) throw std::logic_error("ResultWriter::append after commit");

@@ -24,6 +24,8 @@ class NpyReader {
   bool next(std::size_t maxRows, Samples& out);
 
   void rewind() { pos_ = first_; }
+  std::size_t position() const { return pos_; }
+  void seek(std::size_t row) { pos_ = row; }
 
   bool hasRawRows() const { return itemSize_ == 4 && !fortran_ && hasMaterial() && materialCount_ > 0; }
 
