@@ -107,7 +107,7 @@ BRDF_FN charlie_fit CharlieFit(realw alpha) {
 
 /* l(x) = a / (1 + b x^c) + d x + e, with x^c = 2^(c log2 x) (x = 0 gives 0). */
 BRDF_FN realw L_CharlieFit(charlie_fit f, realw x) {
-  return f.a / (1.0f + f.b * brdf_exp2(f.c * brdf_log2(x))) + f.d * x + f.e;
+  return f.a * brdf_rcp(1.0f + f.b * brdf_exp2(f.c * brdf_log2(x))) + f.d * x + f.e;
 }
 
 /* Lambda(cos) = exp(l(cos)) below 0.5, exp(2 l(0.5) - l(1 - cos)) above: l is evaluated once, at
@@ -121,7 +121,7 @@ BRDF_FN realw Lambda_Charlie(charlie_fit f, realw cos_theta) {
 /* Conty & Kulla 2017 height-correlated visibility with the fitted Lambda; KHR_materials_sheen "Sheen visibility". */
 BRDF_FN realw V_Charlie(realw NdotL, realw NdotV, realw alpha) {
   charlie_fit f = CharlieFit(alpha);
-  return 1.0f / ((1.0f + Lambda_Charlie(f, NdotV) + Lambda_Charlie(f, NdotL)) * (4.0f * NdotV * NdotL));
+  return brdf_rcp((1.0f + Lambda_Charlie(f, NdotV) + Lambda_Charlie(f, NdotL)) * (4.0f * NdotV * NdotL));
 }
 
 /* Neubelt & Pettineo 2013, after Ashikhmin & Premoze 2007; KHR_materials_sheen "Sheen visibility",
