@@ -76,7 +76,7 @@ BRDF_FN realw F_Schlick(realw f0, realw w) { return f0 + (1.0f - f0) * w; }
 BRDF_FN realw D_Charlie(realw hxy2, realw hn2, realw alpha) {
   realw inv_r = 1.0f / alpha;
   realw log2_sin2 = brdf_log2(hxy2) - brdf_log2(hxy2 + hn2);
-  return (2.0f + inv_r) * brdf_exp2((0.5f * inv_r) * log2_sin2) * (0.5f / M_PI_F);
+  return (2.0f + inv_r) * brdf_exp2_nonpositive((0.5f * inv_r) * log2_sin2) * (0.5f / M_PI_F);
 }
 
 /* Ashikhmin & Premoze 2007 velvet, inverted Gaussian; "Cloth Shading" AshikhminD, called with
@@ -110,7 +110,7 @@ BRDF_FN charlie_fit CharlieFit(realw alpha) {
 
 /* l(x) = a / (1 + b x^c) + d x + e, with x^c = 2^(c log2 x) (x = 0 gives 0). */
 BRDF_FN realw L_CharlieFit(charlie_fit f, realw x) {
-  return f.a * brdf_rcp(1.0f + f.b * brdf_exp2(f.c * brdf_log2(x))) + f.d * x + f.e;
+  return f.a * brdf_rcp(1.0f + f.b * brdf_exp2_nonpositive(f.c * brdf_log2(x))) + f.d * x + f.e;
 }
 
 /* Lambda(cos) = exp(l(cos)) below 0.5, exp(2 l(0.5) - l(1 - cos)) above: l is evaluated once, at
@@ -118,7 +118,7 @@ BRDF_FN realw L_CharlieFit(charlie_fit f, realw x) {
 BRDF_FN realw Lambda_Charlie(charlie_fit f, realw cos_theta) {
   intw low = cos_theta < 0.5f;
   realw l = L_CharlieFit(f, select(1.0f - cos_theta, cos_theta, low));
-  return brdf_exp(select(2.0f * f.l_half - l, l, low));
+  return brdf_exp_bounded(select(2.0f * f.l_half - l, l, low));
 }
 
 /* Conty & Kulla 2017 height-correlated visibility with the fitted Lambda; KHR_materials_sheen "Sheen visibility". */

@@ -17,6 +17,7 @@
 BRDF_FN realw brdf_exp2(realw y) { return native_exp2(y); }
 BRDF_FN realw brdf_log2(realw x) { return native_log2(x); }
 BRDF_FN realw brdf_rsqrt(realw x) { return native_rsqrt(x); }
+BRDF_FN realw brdf_exp2_core(realw y) { return native_exp2(y); }
 BRDF_FN realw brdf_rcp(realw x) { return 1.0f / x; }
 #else
 /* 2^y: y = n + f with n the nearest integer and |f| <= 1/2, 2^f = e^t (t = f ln2) by its degree-7
@@ -25,8 +26,7 @@ BRDF_FN realw brdf_rcp(realw x) { return 1.0f / x; }
    is 1 + t q(t) with q evaluated in Estrin's order (pairs of terms, then powers t^2 and t^4): four
    dependent multiply-adds instead of seven, so the chains of exp and log in the sheen lobes overlap
    more; q's rounding reaches the result scaled by |t| <= 0.35. */
-BRDF_FN realw brdf_exp2(realw y) {
-  realw yc = clamp(y, -126.0f, 127.0f);
+BRDF_FN realw brdf_exp2_core(realw yc) {
   /* n, the nearest integer (ties to even), from the low bits of yc + 1.5 2^23 (exact for |yc| < 2^22):
      three operations where floor() is eleven in PoCL's library, and through the bits, so that no
      -ffast-math (the OpenMP peer) or -cl-fast-relaxed-math can fold the sum away. */
@@ -38,13 +38,24 @@ BRDF_FN realw brdf_exp2(realw y) {
   realw q45 = 0.0083333333333f + t * 0.0013888888889f;
   realw q = q01 + t2 * q23 + (t2 * t2) * (q45 + t2 * 0.00019841269841f);
   realw p = 1.0f + t * q;
+  /* n = -127 gives the exponent bits 0: the result is exactly 0. */
   realw scale = AS_REALW((ni + 127) << 23);
-  return select(p * scale, (realw)(0.0f), y < -126.0f);
+  return p * scale;
+}
+BRDF_FN realw brdf_exp2(realw y) {
+  return select(brdf_exp2_core(clamp(y, -126.0f, 127.0f)), (realw)(0.0f), y < -126.0f);
 }
 
 #endif
 
 BRDF_FN realw brdf_exp(realw x) { return brdf_exp2(x * 1.44269504089f); }
+
+/* The same without the clamp where the caller's range makes it idle: it and the flush are two or three
+   operations at the head and the tail of a chain of dependent ones. brdf_exp2_nonpositive: y <= 0
+   or -inf (a power of a number in [0, 1]), flushed to 0 below -127 by the exponent bits alone.
+   brdf_exp_bounded: |x| log2(e) <= 126, unchecked. */
+BRDF_FN realw brdf_exp2_nonpositive(realw y) { return brdf_exp2_core(max(y, -127.0f)); }
+BRDF_FN realw brdf_exp_bounded(realw x) { return brdf_exp2_core(x * 1.44269504089f); }
 
 /* ln(1 + f) / f on the reduced range f in [sqrt(1/2) - 1, sqrt(2) - 1]: a degree-9 polynomial,
    minimax in relative error (4.1e-9) fitted for these float coefficients, evaluated in Estrin's
