@@ -83,13 +83,14 @@ BRDF_FN realw brdf_log2_1p_reduced(realw f) {
 /* log2 x for x > 0: x = 2^e m with m in [sqrt(1/2), sqrt(2)), log2 x = e + log2(1 + (m - 1)),
    m - 1 exact. x below FLT_MIN (0 or subnormal) gives -inf, so that pow(0, c) = exp2(c log2 0) = 0. */
 BRDF_FN realw brdf_log2(realw x) {
+  /* e and m in integer operations, one cycle each: k = floor(log2(x / sqrt(1/2))) from the bits of x
+     less those of sqrt(1/2) (0x3f3504f3), and m = x 2^-k from the bits less k in the exponent field.
+     Four short steps reach m - 1, where a compare and a masked halving of m in [1, 2) took three
+     longer ones. */
   intw bits = AS_INTW(x);
-  realw e = CONVERT_REALW(((bits >> 23) & 0xff) - 127);
-  realw m = AS_REALW((bits & 0x007fffff) | 0x3f800000);
-  intw big = m > 1.41421356f;
-  m = select(m, m * 0.5f, big);
-  e = select(e, e + 1.0f, big);
-  realw r = e + brdf_log2_1p_reduced(m - 1.0f);
+  intw k = (bits - 0x3f3504f3) >> 23;
+  realw m = AS_REALW(bits - k * 0x00800000); /* k 2^23: no shift of a negative number */
+  realw r = CONVERT_REALW(k) + brdf_log2_1p_reduced(m - 1.0f);
   return select(r, (realw)(-INFINITY), x < 1.17549435e-38f);
 }
 
