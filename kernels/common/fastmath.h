@@ -20,24 +20,27 @@ BRDF_FN realw brdf_rsqrt(realw x) { return native_rsqrt(x); }
 BRDF_FN realw brdf_exp2_core(realw y) { return native_exp2(y); }
 BRDF_FN realw brdf_rcp(realw x) { return 1.0f / x; }
 #else
-/* 2^y: y = n + f with n the nearest integer and |f| <= 1/2, 2^f = e^t (t = f ln2) by its degree-7
-   Taylor series (truncation 5e-9), 2^n by building the exponent bits. Below -126 the result flushes to 0, as the BRDF's
+/* 2^y: y = n + f with n the nearest integer and |f| <= 1/2, 2^f = e^(f ln2) by its degree-7
+   Taylor series in f (truncation 5e-9), 2^n by building the exponent bits. Below -126 the result flushes to 0, as the BRDF's
    factors underflow there anyway; above 127 it saturates at 2^127-ish (never reached). The series
-   is 1 + t q(t) with q evaluated in Estrin's order (pairs of terms, then powers t^2 and t^4): four
+   is 1 + f q(f) with q evaluated in Estrin's order (pairs of terms, then powers f^2 and f^4): four
    dependent multiply-adds instead of seven, so the chains of exp and log in the sheen lobes overlap
-   more; q's rounding reaches the result scaled by |t| <= 0.35. */
+   more; q's rounding reaches the result scaled by |f| <= 1/2. brdf_exp2_core takes y already
+   within [-127, 127]. */
 BRDF_FN realw brdf_exp2_core(realw yc) {
   /* n, the nearest integer (ties to even), from the low bits of yc + 1.5 2^23 (exact for |yc| < 2^22):
      three operations where floor() is eleven in PoCL's library, and through the bits, so that no
      -ffast-math (the OpenMP peer) or -cl-fast-relaxed-math can fold the sum away. */
   intw ni = AS_INTW(yc + 12582912.0f) - 0x4b400000;
-  realw n = CONVERT_REALW(ni);
-  realw t = (yc - n) * 0.69314718056f;
-  realw t2 = t * t;
-  realw q01 = 1.0f + t * 0.5f, q23 = 0.16666666667f + t * 0.041666666667f;
-  realw q45 = 0.0083333333333f + t * 0.0013888888889f;
-  realw q = q01 + t2 * q23 + (t2 * t2) * (q45 + t2 * 0.00019841269841f);
-  realw p = 1.0f + t * q;
+  /* The series in f = y - n with the powers of ln 2 in its coefficients (ln2^k / k!): no scaling by
+     ln 2 in the chain. (n comes through the conversion of ni: (y + 1.5 2^23) - 1.5 2^23 in float
+     would be one step shorter, but -ffast-math folds it to y.) */
+  realw f = yc - CONVERT_REALW(ni);
+  realw f2 = f * f;
+  realw q01 = 6.93147180560e-01f + f * 2.40226506959e-01f, q23 = 5.55041086648e-02f + f * 9.61812910763e-03f;
+  realw q45 = 1.33335581464e-03f + f * 1.54035303934e-04f;
+  realw q = q01 + f2 * q23 + (f2 * f2) * (q45 + f2 * 1.52527338041e-05f);
+  realw p = 1.0f + f * q;
   /* n = -127 gives the exponent bits 0: the result is exactly 0. */
   realw scale = AS_REALW((ni + 127) << 23);
   return p * scale;
