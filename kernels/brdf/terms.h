@@ -68,14 +68,11 @@ BRDF_FN realw V_SmithGGXCorrelated(realw NdotL, realw NdotV, realw alpha) {
 BRDF_FN realw F_Schlick(realw f0, realw w) { return f0 + (1.0f - f0) * w; }
 
 /* Conty & Kulla 2017 "Charlie" sheen; KHR_materials_sheen "Sheen distribution".
-   (sin^2)^(1/(2 alpha)) = 2^((log2 |h_xy|^2 - log2 |h|^2) / (2 alpha)): the two logarithms are
-   independent of each other and there is no division of h's components in the chain that ends in
-   exp2, and no scaling by ln 2 either way. No precision loss near N.H = 1 (|h_xy|^2 small keeps
-   its relative accuracy through log2); near N.H = 0 the difference cancels to an absolute error of
-   a few 2^-24, i.e. a relative error of that times ln 2 / (2 alpha) in D. */
+   (sin^2)^(1/(2 alpha)) = 2^(-log2(1 + cot^2) / (2 alpha)): no precision loss near N.H = 1 and
+   exact at the large exponents of small alpha; log2 and exp2, so no scaling by ln 2 either way. */
 BRDF_FN realw D_Charlie(realw hxy2, realw hn2, realw alpha) {
   realw inv_r = 1.0f / alpha;
-  realw log2_sin2 = brdf_log2(hxy2) - brdf_log2(hxy2 + hn2);
+  realw log2_sin2 = -brdf_log2_1p(hn2 / hxy2);
   return (2.0f + inv_r) * brdf_exp2_nonpositive((0.5f * inv_r) * log2_sin2) * (0.5f / M_PI_F);
 }
 

@@ -99,6 +99,22 @@ BRDF_FN realw brdf_log2(realw x) {
 
 #endif
 
+#if !BRDFCL_NATIVE_MATH
+/* log2(1 + u) for u >= 0 (+inf stays +inf) in the same way as brdf_log1p below, with brdf_log2's
+   integer reduction (k from the bits of w = 1 + u less those of sqrt(1/2), 2^-k from k) and the
+   log2 polynomial: no conversion or compare before the polynomial, and no scaling by ln 2 after
+   it for a caller that wants a power of 2. */
+BRDF_FN realw brdf_log2_1p(realw u) {
+  intw bits = AS_INTW(1.0f + u);
+  intw k = (bits - 0x3f3504f3) >> 23;
+  realw s = AS_REALW((127 - min(k, 25)) * 0x00800000); /* 2^-k */
+  realw m = AS_REALW(bits - k * 0x00800000);
+  realw f = select(u * s + (s - 1.0f), m - 1.0f, k > 24);
+  realw r = CONVERT_REALW(k) + brdf_log2_1p_reduced(f);
+  return select(r, u, isinf(u));
+}
+#endif
+
 /* log(1 + u) for u >= 0 without a division: w = 1 + u rounded gives the exponent e (with
    m in [sqrt(1/2), sqrt(2))), and f = (1 + u) 2^-e - 1 is formed from u itself, u 2^-e + (2^-e - 1):
    the scaling is exact and the sum rounds once, so the rounding of w is not inherited (exact for
@@ -117,6 +133,10 @@ BRDF_FN realw brdf_log1p(realw u) {
   realw r = e * 0.69314718056f + brdf_ln1p_reduced(f);
   return select(r, u, isinf(u));
 }
+
+#if BRDFCL_NATIVE_MATH
+BRDF_FN realw brdf_log2_1p(realw u) { return brdf_log1p(u) * 1.44269504089f; }
+#endif
 
 #if !BRDFCL_NATIVE_MATH
 #if BRDFCL_W == 16 && defined(__clang__) && defined(__AVX512F__)
