@@ -1,4 +1,4 @@
-/* Inlinable exp2, log2, exp, log1p and rsqrt over width-generic lanes. PoCL's builtins are accurate but
+/* Inlinable exp2, log2, exp, log1p, log2(1 + u), rsqrt and 1/x over width-generic lanes. PoCL's builtins are accurate but
    heavy (its log2 alone costs more than a whole Charlie lobe in LLVM's inline budget), and C++
    peers compiling these headers get the same code. Accuracy, measured against double over the
    ranges the BRDF uses (tests/unit/test_fastmath.cpp): <= 2 ulp for exp2 and log2 on normal
