@@ -123,15 +123,17 @@ BRDF_FN lobe_value lobe_specular(const material_lanes m, lobe_geometry g) {
 /* White sheen D * V for the batch's options (KHR_materials_sheen "Sheen distribution", "Sheen
    visibility"; Ashikhmin's as the cloth-shading article gives them). */
 BRDF_FN realw sheen_dv(realw hxy2, realw hn2, realw NdotL, realw NdotV, realw alpha) {
-#if BRDFCL_SHEEN_DIST == BRDFCL_SHEEN_DIST_ASHIKHMIN
-  realw D = D_Ashikhmin(hxy2, hn2, alpha);
-#else
-  realw D = D_Charlie(hxy2, hn2, alpha);
-#endif
+  /* V before D: the Charlie V's chain (log2, exp2, reciprocal, exp, reciprocal) is the longer, and
+     the compiler keeps about the source order, so D's work fills its waits. */
 #if BRDFCL_SHEEN_VIS == BRDFCL_SHEEN_VIS_ASHIKHMIN
   realw V = V_Ashikhmin(NdotL, NdotV);
 #else
   realw V = V_Charlie(NdotL, NdotV, alpha);
+#endif
+#if BRDFCL_SHEEN_DIST == BRDFCL_SHEEN_DIST_ASHIKHMIN
+  realw D = D_Ashikhmin(hxy2, hn2, alpha);
+#else
+  realw D = D_Charlie(hxy2, hn2, alpha);
 #endif
   return D * V;
 }

@@ -68,12 +68,12 @@ BRDF_FN realw V_SmithGGXCorrelated(realw NdotL, realw NdotV, realw alpha) {
 BRDF_FN realw F_Schlick(realw f0, realw w) { return f0 + (1.0f - f0) * w; }
 
 /* Conty & Kulla 2017 "Charlie" sheen; KHR_materials_sheen "Sheen distribution".
-   (sin^2)^(1/(2 alpha)) = exp(-log1p(cot^2) / (2 alpha)): no precision loss near N.H = 1 and
-   exact at the large exponents of small alpha. */
+   (sin^2)^(1/(2 alpha)) = 2^(-log2(1 + cot^2) / (2 alpha)): no precision loss near N.H = 1 and
+   exact at the large exponents of small alpha; log2 and exp2, so no scaling by ln 2 either way. */
 BRDF_FN realw D_Charlie(realw hxy2, realw hn2, realw alpha) {
   realw inv_r = 1.0f / alpha;
-  realw log_sin2 = -brdf_log1p(hn2 / hxy2);
-  return (2.0f + inv_r) * brdf_exp(0.5f * inv_r * log_sin2) * (0.5f / M_PI_F);
+  realw log2_sin2 = -brdf_log2_1p(hn2 / hxy2);
+  return (2.0f + inv_r) * brdf_exp2_nonpositive((0.5f * inv_r) * log2_sin2) * (0.5f / M_PI_F);
 }
 
 /* Ashikhmin & Premoze 2007 velvet, inverted Gaussian; "Cloth Shading" AshikhminD, called with
@@ -107,7 +107,7 @@ BRDF_FN charlie_fit CharlieFit(realw alpha) {
 
 /* l(x) = a / (1 + b x^c) + d x + e, with x^c = 2^(c log2 x) (x = 0 gives 0). */
 BRDF_FN realw L_CharlieFit(charlie_fit f, realw x) {
-  return f.a / (1.0f + f.b * brdf_exp2(f.c * brdf_log2(x))) + f.d * x + f.e;
+  return f.a * brdf_rcp(1.0f + f.b * brdf_exp2_nonpositive(f.c * brdf_log2(x))) + f.d * x + f.e;
 }
 
 /* Lambda(cos) = exp(l(cos)) below 0.5, exp(2 l(0.5) - l(1 - cos)) above: l is evaluated once, at
@@ -115,13 +115,13 @@ BRDF_FN realw L_CharlieFit(charlie_fit f, realw x) {
 BRDF_FN realw Lambda_Charlie(charlie_fit f, realw cos_theta) {
   intw low = cos_theta < 0.5f;
   realw l = L_CharlieFit(f, select(1.0f - cos_theta, cos_theta, low));
-  return brdf_exp(select(2.0f * f.l_half - l, l, low));
+  return brdf_exp_bounded(select(2.0f * f.l_half - l, l, low));
 }
 
 /* Conty & Kulla 2017 height-correlated visibility with the fitted Lambda; KHR_materials_sheen "Sheen visibility". */
 BRDF_FN realw V_Charlie(realw NdotL, realw NdotV, realw alpha) {
   charlie_fit f = CharlieFit(alpha);
-  return 1.0f / ((1.0f + Lambda_Charlie(f, NdotV) + Lambda_Charlie(f, NdotL)) * (4.0f * NdotV * NdotL));
+  return brdf_rcp((1.0f + Lambda_Charlie(f, NdotV) + Lambda_Charlie(f, NdotL)) * (4.0f * NdotV * NdotL));
 }
 
 /* Neubelt & Pettineo 2013, after Ashikhmin & Premoze 2007; KHR_materials_sheen "Sheen visibility",
