@@ -2,8 +2,9 @@
    heavy (its log2 alone costs more than a whole Charlie lobe in LLVM's inline budget), and C++
    peers compiling these headers get the same code. Accuracy, measured against double over the
    ranges the BRDF uses (tests/unit/test_fastmath.cpp): <= 2 ulp for exp2 and log2 on normal
-   inputs (log2 near 1: <= 2 ulp of 1, absolute), <= 4 ulp for log1p, and exp within 3 ulp plus
-   the rounding of x log2(e), i.e. about |x| ulp. */
+   inputs (log2 near 1: <= 2 ulp of 1, absolute), <= 4 ulp for log1p and log2(1 + u), <= 1 ulp
+   for 1/x and <= 2.5 for 1/sqrt(x), and exp within 3 ulp plus the rounding of x log2(e), i.e.
+   about |x| ulp; each at one lane and at sixteen. */
 #ifndef BRDFCL_FASTMATH_H
 #define BRDFCL_FASTMATH_H
 
