@@ -107,19 +107,6 @@ BRDF_FN void finish_rows(material_lanes m, vec3w l, vec3w v, intw bad, uint firs
                          __global uint* bad_row) {
   report_bad_rows(bad & lanes_before(n), first, bad_row);
   rgbw f = brdf_material(m, l, v, sheen_e, sheen_e_size);
-#if STREAM_STORES
-  /* As in eval_samples: the results of a launch larger than the caches go out with non-temporal
-     stores, which skip the read for ownership of each line, where the group's rows are aligned as
-     a realw (they are wherever the array is: a group's rows span 3 realw). */
-  const ulong stream_bytes = 8ul << 20;
-  if (n == BRDFCL_W && get_global_size(0) * get_global_size(1) * (BRDFCL_W * 12) >= stream_bytes &&
-      ((ulong)out & (sizeof(realw) - 1)) == 0) {
-    __builtin_nontemporal_store(ROWS_INTERLEAVE(f, 0), (__global realw*)out);
-    __builtin_nontemporal_store(ROWS_INTERLEAVE(f, 1), (__global realw*)out + 1);
-    __builtin_nontemporal_store(ROWS_INTERLEAVE(f, 2), (__global realw*)out + 2);
-    return;
-  }
-#endif
   if (n == BRDFCL_W)
     rows_store(f, out);
   else
