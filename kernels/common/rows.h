@@ -73,55 +73,31 @@ BRDF_FN void rows_store_partial(rgbw v, __global float* p, uint n) {
 }
 
 /* The same for rows of 7 floats, a samples file's (material, Lx Ly Lz Vx Vy Vz): lane k of column c
-   is element 7k + c of 7 consecutive vectors v[0..6], gathered by a tree of constant shuffles.
-   The leaves pack the elements that a pair of vectors (v0 v1, v2 v3, v4 v5) holds of TABLE_G
-   columns at once, TABLE_CAP slots a column (a pair holds 2W / 7 rows, rounded up); each column
-   then takes its lanes from the leaves of pairs 0 and 1, from the leaf of pair 2 and v6, and
-   merges the two: 3 shuffles a column and 3 or 4 a pair instead of 7 a column. */
+   is element 7k + c of 7 consecutive vectors v[0..6], which a tree of constant shuffles gathers
+   (the pairs of vectors it lies in, then the halves). */
 #if BRDFCL_W > 1
-#define TABLE_CAP ((2 * BRDFCL_W + 6) / 7)
-#define TABLE_G (BRDFCL_W == 16 ? 3 : 2)
-/* The first row (lane) of column c whose element lies in pair p. */
-#define TABLE_KMIN(c, p) ((2 * (p) * BRDFCL_W - (c) + 6) / 7)
-#define TABLE_LEAF_COL(g, i) ((g) * TABLE_G + (i) / TABLE_CAP)
-#define TABLE_LEAF_E(g, p, i) (7 * (TABLE_KMIN(TABLE_LEAF_COL(g, i), p) + (i) % TABLE_CAP) + TABLE_LEAF_COL(g, i))
-#define TABLE_LEAF(g, p, i)                                                                        \
-  ((i) / TABLE_CAP < TABLE_G && TABLE_LEAF_COL(g, i) < 7 && TABLE_LEAF_E(g, p, i) < 2 * ((p) + 1) * BRDFCL_W \
-       ? TABLE_LEAF_E(g, p, i) - 2 * (p) * BRDFCL_W                                                \
-       : -1)
-/* Lane k of column c: the vector its element lies in, and its slot in its pair's leaf. */
-#define TABLE_Q(c, k) ((7 * (k) + (c)) / BRDFCL_W)
-#define TABLE_POS(c, k) (((c) % TABLE_G) * TABLE_CAP + (k) - TABLE_KMIN(c, TABLE_Q(c, k) / 2))
-#define TABLE_FROM01(c, unused, k) \
-  (TABLE_Q(c, k) < 2 ? TABLE_POS(c, k) : TABLE_Q(c, k) < 4 ? BRDFCL_W + TABLE_POS(c, k) : -1)
-#define TABLE_FROM2V6(c, unused, k) \
-  (TABLE_Q(c, k) < 4 ? -1 : TABLE_Q(c, k) < 6 ? TABLE_POS(c, k) : BRDFCL_W + 7 * (k) + (c) - 6 * BRDFCL_W)
-#define TABLE_MERGE(c, unused, k) (TABLE_Q(c, k) < 4 ? (k) : BRDFCL_W + (k))
-#define TABLE_LEAVES(g)                                                                  \
-  realw leaf##g##_0 = __builtin_shufflevector(v[0], v[1], ROWS_LANES(TABLE_LEAF, g, 0)), \
-        leaf##g##_1 = __builtin_shufflevector(v[2], v[3], ROWS_LANES(TABLE_LEAF, g, 1)), \
-        leaf##g##_2 = __builtin_shufflevector(v[4], v[5], ROWS_LANES(TABLE_LEAF, g, 2));
-#define TABLE_COLUMN_OF(c, g)                                                                 \
-  __builtin_shufflevector(__builtin_shufflevector(leaf##g##_0, leaf##g##_1, ROWS_LANES(TABLE_FROM01, c, 0)), \
-                          __builtin_shufflevector(leaf##g##_2, v[6], ROWS_LANES(TABLE_FROM2V6, c, 0)),      \
-                          ROWS_LANES(TABLE_MERGE, c, 0))
-#if BRDFCL_W == 16
-#define TABLE_COLUMNS                                                                               \
-  TABLE_LEAVES(0) TABLE_LEAVES(1) TABLE_LEAVES(2)                                                   \
-  *material = TABLE_COLUMN_OF(0, 0);                                                                \
-  L->x = TABLE_COLUMN_OF(1, 0), L->y = TABLE_COLUMN_OF(2, 0), L->z = TABLE_COLUMN_OF(3, 1);         \
-  V->x = TABLE_COLUMN_OF(4, 1), V->y = TABLE_COLUMN_OF(5, 1), V->z = TABLE_COLUMN_OF(6, 2);
-#else
-#define TABLE_COLUMNS                                                                               \
-  TABLE_LEAVES(0) TABLE_LEAVES(1) TABLE_LEAVES(2) TABLE_LEAVES(3)                                   \
-  *material = TABLE_COLUMN_OF(0, 0);                                                                \
-  L->x = TABLE_COLUMN_OF(1, 0), L->y = TABLE_COLUMN_OF(2, 1), L->z = TABLE_COLUMN_OF(3, 1);         \
-  V->x = TABLE_COLUMN_OF(4, 2), V->y = TABLE_COLUMN_OF(5, 2), V->z = TABLE_COLUMN_OF(6, 3);
-#endif
-#define TABLE_LOAD_BODY                            \
-  realw v[7];                                      \
-  for (int q = 0; q < 7; ++q) v[q] = VLOADW(q, p); \
-  TABLE_COLUMNS
+#define TABLE_STRIDE 7
+#define TABLE_E(c, k) (TABLE_STRIDE * (k) + (c))
+#define TABLE_SRC(c, k) (TABLE_E(c, k) / BRDFCL_W)
+#define TABLE_PAIR(c, p, k) (TABLE_SRC(c, k) / 2 == (p) ? TABLE_E(c, k) - 2 * (p) * BRDFCL_W : -1)
+#define TABLE_LOW(c, unused, k) (TABLE_SRC(c, k) < 2 ? (k) : TABLE_SRC(c, k) < 4 ? BRDFCL_W + (k) : -1)
+#define TABLE_HIGH(c, unused, k) (TABLE_SRC(c, k) < 4 ? -1 : TABLE_SRC(c, k) < 6 ? (k) : BRDFCL_W + (k))
+#define TABLE_HALF(c, unused, k) (TABLE_SRC(c, k) < 4 ? (k) : BRDFCL_W + (k))
+#define TABLE_COLUMN(v, c)                                                                                   \
+  __builtin_shufflevector(                                                                                   \
+      __builtin_shufflevector(__builtin_shufflevector(v[0], v[1], ROWS_LANES(TABLE_PAIR, c, 0)),             \
+                              __builtin_shufflevector(v[2], v[3], ROWS_LANES(TABLE_PAIR, c, 1)),             \
+                              ROWS_LANES(TABLE_LOW, c, 0)),                                                  \
+      __builtin_shufflevector(__builtin_shufflevector(v[4], v[5], ROWS_LANES(TABLE_PAIR, c, 2)),             \
+                              __builtin_shufflevector(v[6], v[6], ROWS_LANES(TABLE_PAIR, c, 3)),             \
+                              ROWS_LANES(TABLE_HIGH, c, 0)),                                                 \
+      ROWS_LANES(TABLE_HALF, c, 0))
+#define TABLE_LOAD_BODY                                                              \
+  realw v[7];                                                                        \
+  for (int q = 0; q < 7; ++q) v[q] = VLOADW(q, p);                                   \
+  *material = TABLE_COLUMN(v, 0);                                                    \
+  L->x = TABLE_COLUMN(v, 1), L->y = TABLE_COLUMN(v, 2), L->z = TABLE_COLUMN(v, 3);   \
+  V->x = TABLE_COLUMN(v, 4), V->y = TABLE_COLUMN(v, 5), V->z = TABLE_COLUMN(v, 6);
 #else
 #define TABLE_LOAD_BODY                                                                                      \
   *material = p[0];                                                \
@@ -165,25 +141,6 @@ BRDF_FN void table_load_partial(__global const float* p, uint n, realw* material
 #define ROWS_DIV(a, b) ((a) / (b))
 #endif
 
-/* Correctly rounded quotients through the reciprocal need a fused multiply-add in hardware (PoCL
-   on x86 says so with __FMA__ rather than FP_FAST_FMAF) and
-   correctly rounded division (BRDFCL_ROWS_FP64 takes its quotients in double instead). */
-#if !BRDFCL_ROWS_FP64 && (defined(FP_FAST_FMAF) || defined(__FMA__))
-#define ROWS_QUOTIENTS 1
-/* a / b from r = 1/b correctly rounded: q = a * r is within an ulp of a / b, its remainder
-   a - q * b is exact in one fma, and q + remainder * r rounds to the correctly rounded a / b
-   (Markstein, "Computation of elementary functions on the IBM RISC System/6000", 1990), given no
-   underflow on the way. A zero remainder keeps q as it is, so that -0 / b stays -0. */
-BRDF_FN realw rows_quotient(realw a, realw b, realw r) {
-#pragma OPENCL FP_CONTRACT OFF
-  realw q = a * r;
-  realw rem = fma(-q, b, a);
-  return select(fma(rem, r, q), q, rem == 0.0f);
-}
-#else
-#define ROWS_QUOTIENTS 0
-#endif
-
 /* Normalizes d in place exactly as the samples readers do (host/src/io/directions.cpp,
    normalizeDirection): x / sqrt((x*x + y*y) + z*z), every operation rounded to float (no
    contraction), and a vector whose squared length leaves [2^-96, 2^96] first scaled by 2^-e,
@@ -207,22 +164,6 @@ BRDF_FN intw rows_normalize(vec3w* d) {
     s = (x * x + y * y) + z * z;
   }
   realw len = ROWS_SQRT(s);
-#if ROWS_QUOTIENTS
-  /* One division for three: each quotient from the correctly rounded reciprocal and one fused
-     correction, which is the correctly rounded quotient (Markstein's theorem) where nothing
-     underflows. Lanes that could (a length outside [2^-40, 2^40], or a nonzero component under
-     2^-40 of it) send their group through the divisions. */
-  realw tiny = len * 0x1p-40f;
-  intw risky = (len < 0x1p-40f) | (len > 0x1p40f) | ((x != 0.0f) & (fabs(x) < tiny)) |
-               ((y != 0.0f) & (fabs(y) < tiny)) | ((z != 0.0f) & (fabs(z) < tiny));
-  if (!ANYW(risky)) {
-    realw r = 1.0f / len;
-    d->x = rows_quotient(x, len, r);
-    d->y = rows_quotient(y, len, r);
-    d->z = rows_quotient(z, len, r);
-    return bad;
-  }
-#endif
   d->x = ROWS_DIV(x, len);
   d->y = ROWS_DIV(y, len);
   d->z = ROWS_DIV(z, len);
