@@ -234,6 +234,10 @@ void registerAll() {
           ->Args({1 << 22, materials})->ArgNames({"n", "materials"})->UseRealTime()->Unit(benchmark::kMillisecond);
     }
   }
+  // The table rows beside the planes kernel at a samples file's 8M rows (docs/performance.md).
+  for (auto [name, path] : {std::pair{"kernel", InMemory::Kernel}, std::pair{"table", InMemory::Table}})
+    benchmark::RegisterBenchmark((std::string("BM_InMemory/all/") + name).c_str(), BM_InMemory, std::string("all"), path)
+        ->Args({1 << 23, 256})->ArgNames({"n", "materials"})->UseRealTime()->Unit(benchmark::kMillisecond);
   benchmark::RegisterBenchmark("BM_StreamTriad", BM_StreamTriad)->Arg(1 << 25)->Iterations(1)->UseRealTime();
   benchmark::RegisterBenchmark("BM_EvalGrid", BM_EvalGrid)->Arg(1 << 14)->UseRealTime()->Unit(benchmark::kMillisecond);
   // Next to the kernel alone on the same workload (all layers, 256 materials), in one run.
