@@ -2,10 +2,21 @@
 // numpy's magic and version, then the header dict padded with spaces to a multiple of 64 bytes.
 #pragma once
 #include <cstddef>
+#include <cstdint>
+#include <random>
 #include <string>
 #include <vector>
 
 namespace brdfcl::test {
+
+// Seeded random results to write as (N, 3) NPY rows, in [0, 4).
+inline std::vector<float> randomRgb(std::size_t rows, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<float> u(0.0f, 4.0f);
+  std::vector<float> rgb(3 * rows);
+  for (auto& v : rgb) v = u(rng);
+  return rgb;
+}
 
 // The magic, version, header length and `dict` padded as numpy pads it; the dict may be malformed.
 inline std::string npyWithDict(std::string dict) {

@@ -44,14 +44,6 @@ void expectFileIs(const std::string& p, const std::string& want, const std::stri
     ASSERT_EQ(got[i], want[i]) << what << ": byte " << i << " of " << got.size();
 }
 
-std::vector<float> randomRgb(std::size_t rows, std::uint64_t seed) {
-  std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<float> u(0.0f, 4.0f);
-  std::vector<float> rgb(3 * rows);
-  for (auto& v : rgb) v = u(rng);
-  return rgb;
-}
-
 // Lengths below, at and across the 1 MiB buffer and the 4 KiB blocks, appended in uneven chunks.
 TEST(DirectOutput, NpyBytesAreThoseOfABufferedWrite) {
   ScratchDir dir("direct");

@@ -20,14 +20,6 @@
 namespace brdfcl::test {
 namespace {
 
-std::vector<float> randomRgb(std::size_t rows, std::uint64_t seed) {
-  std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<float> u(0.0f, 4.0f);
-  std::vector<float> rgb(3 * rows);
-  for (auto& v : rgb) v = u(rng);
-  return rgb;
-}
-
 std::string expectedNpy(const std::vector<float>& rgb) {
   std::string out = npyHeader(rgb.size() / 3, 3);
   out.append(reinterpret_cast<const char*>(rgb.data()), rgb.size() * sizeof(float));

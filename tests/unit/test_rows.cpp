@@ -59,6 +59,16 @@ Samples normalizedOnHost(const std::vector<float>& L, const std::vector<float>& 
   return s;
 }
 
+// A file's (N, 7) rows (material, Lx Ly Lz, Vx Vy Vz) of the same directions and indices.
+std::vector<float> tableRows(const std::vector<float>& L, const std::vector<float>& V, const std::vector<std::int64_t>& index) {
+  std::vector<float> table(7 * index.size());
+  for (std::size_t i = 0; i < index.size(); ++i) {
+    table[7 * i] = float(index[i]);
+    for (int c = 0; c < 3; ++c) table[7 * i + 1 + c] = L[3 * i + c], table[7 * i + 4 + c] = V[3 * i + c];
+  }
+  return table;
+}
+
 ArraySamples arrays(const float* L, const float* V, const std::int64_t* index, std::size_t n) {
   ArraySamples a;
   a.L.data = L;
@@ -146,12 +156,8 @@ TEST_P(RowsAtWidth, TableRowsGiveTheArraysBits) {
   for (std::size_t n : {std::size_t(1), std::size_t(15), std::size_t(16), std::size_t(45), std::size_t(5003)}) {
     const auto L = rawRows(rng, n), V = rawRows(rng, n);
     std::vector<std::int64_t> index(n);
-    std::vector<float> table(7 * n);
-    for (std::size_t i = 0; i < n; ++i) {
-      index[i] = std::int64_t(rng() % materials.size());
-      table[7 * i] = float(index[i]);
-      for (int c = 0; c < 3; ++c) table[7 * i + 1 + c] = L[3 * i + c], table[7 * i + 4 + c] = V[3 * i + c];
-    }
+    for (auto& k : index) k = std::int64_t(rng() % materials.size());
+    const std::vector<float> table = tableRows(L, V, index);
     std::vector<float> want(3 * n), got(3 * n);
     evaluateArrays(ev, materials, arrays(L.data(), V.data(), index.data(), n), want.data());
     ASSERT_EQ(ev.evaluateTableRows(materials, table.data(), n, got.data()), n);
@@ -327,12 +333,8 @@ TEST_P(TableRowsAtWidth, OrdinaryDirectionsGiveTheReadersBits) {
   for (std::size_t n : {std::size_t(16), std::size_t(40009)}) {
     const auto L = ordinaryRows(rng, n), V = ordinaryRows(rng, n);
     std::vector<std::int64_t> index(n);
-    std::vector<float> table(7 * n);
-    for (std::size_t i = 0; i < n; ++i) {
-      index[i] = std::int64_t(rng() % materials.size());
-      table[7 * i] = float(index[i]);
-      for (int c = 0; c < 3; ++c) table[7 * i + 1 + c] = L[3 * i + c], table[7 * i + 4 + c] = V[3 * i + c];
-    }
+    for (auto& k : index) k = std::int64_t(rng() % materials.size());
+    const std::vector<float> table = tableRows(L, V, index);
     const std::vector<float> want = ev.evaluate(materials, normalizedOnHost(L, V, index));
     std::vector<float> got(3 * n);
     ASSERT_EQ(ev.evaluateTableRows(materials, table.data(), n, got.data()), n);
