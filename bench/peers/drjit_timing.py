@@ -1,5 +1,6 @@
 # The Dr.Jit peer's timing (bench/peers/drjit_peer.py): one workload resident on the device, and
 # alternating rounds of `brdfcl bench --pairs --indices` and the peer on the same inputs.
+import gc
 import statistics
 import time
 
@@ -103,7 +104,12 @@ def timing(a, dr, mod, sheen_e, tmp):
             print(f"  {lobe:<10}{k:>10}{row['brdfcl_samples_per_second'] / 1e6:>10.1f}"
                   f"{row['drjit_samples_per_second'] / 1e6:>10.1f}  {row['ratio_median']:.2f}x "
                   f"({', '.join(f'{r:.2f}' for r in ratios)})", flush=True)
+            # The Side and its frozen function hold each other (the body reads self), so only the
+            # cycle collector frees them: collected here, their arrays are freed before the next
+            # workload records, where a free (a host function on the LLVM backend) cannot be recorded.
             del side
+            gc.collect()
+            dr.sync_thread()
     what = "launch (profiling event) vs kernel time" if cuda else "OpenCL kernel vs Dr.Jit evaluation, inputs resident"
     print(f"  (Msamples/s; {what})")
     return results
