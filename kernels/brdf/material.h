@@ -38,6 +38,12 @@
 #ifndef BRDFCL_HAS_ANISOTROPY
 #define BRDFCL_HAS_ANISOTROPY 1
 #endif
+/* The spec's albedo scaling reads each material's own row of E, blended once by the host for its
+   sheen_roughness and placed after the table (brdfcl_material.sheen_e_row; Evaluator::prepare),
+   instead of blending two rows of the table at every lookup. */
+#ifndef BRDFCL_E_ROW
+#define BRDFCL_E_ROW 0
+#endif
 
 /* Below this cosine, denominators of V terms are evaluated at this cosine: keeps f finite at
    N.L or N.V -> 0+ (documented clamp; f = 0 at N.L <= 0 or N.V <= 0 anyway). */
@@ -67,7 +73,16 @@ typedef struct {
   BRDFCL_MATERIAL_LANES(BRDFCL_DECLARE_LANE)
   realw draft;     /* 1 for the experimental draft's sheen, else 0 */
   realw aniso_ext; /* 1 where BRDFCL_MAT_ANISOTROPY is set (khronos, filament), else 0 */
+#if BRDFCL_E_ROW
+  intw e_row;      /* sheen_e_row */
+#endif
 } material_lanes;
+
+#if BRDFCL_E_ROW
+#define BRDFCL_SPLAT_E_ROW out.e_row = (intw)((int)m->sheen_e_row);
+#else
+#define BRDFCL_SPLAT_E_ROW
+#endif
 
 /* All lanes share one material (grid evaluation, shading): splat. OpenCL C 1.2 has no generic
    address space, hence a global and a private entry point over one body. */
@@ -77,6 +92,7 @@ typedef struct {
   BRDFCL_MATERIAL_LANES(BRDFCL_SPLAT_LANE)                                   \
   out.draft = (realw)((m->flags & BRDFCL_MAT_DRAFT_SHEEN) ? 1.0f : 0.0f);     \
   out.aniso_ext = (realw)((m->flags & BRDFCL_MAT_ANISOTROPY) ? 1.0f : 0.0f);  \
+  BRDFCL_SPLAT_E_ROW                                                         \
   return out;
 BRDF_FN material_lanes material_splat(__global const brdfcl_material* m) { BRDFCL_SPLAT_BODY }
 #ifdef __OPENCL_VERSION__
@@ -178,6 +194,9 @@ BRDF_FN material_lanes material_gather(__global const brdfcl_material* materials
   BRDFCL_MATERIAL_LANES(BRDFCL_PIECE_LANE)
   intw flags = as_int16(field[__builtin_offsetof(brdfcl_material, flags) / sizeof(float)]);
   material_flag_lanes(&out, flags);
+#if BRDFCL_E_ROW
+  out.e_row = as_int16(field[__builtin_offsetof(brdfcl_material, sheen_e_row) / sizeof(float)]);
+#endif
   return out;
 }
 #else
@@ -188,6 +207,9 @@ BRDF_FN material_lanes material_gather(__global const brdfcl_material* materials
   BRDFCL_MATERIAL_LANES(BRDFCL_GATHER_LANE)
   intw flags = AS_INTW(GATHERW((__global const float*)&materials->flags, at));
   material_flag_lanes(&out, flags);
+#if BRDFCL_E_ROW
+  out.e_row = AS_INTW(GATHERW((__global const float*)&materials->sheen_e_row, at));
+#endif
   return out;
 }
 #endif

@@ -38,7 +38,11 @@ typedef struct brdfcl_material {
   float ior_f0;          /* dielectric F0 from KHR_materials_ior, as the profile derives it */
   float aniso_strength;  /* anisotropyStrength */
   float clearcoat_roughness; /* the profile's perceptual coat roughness (DFG table coordinate) */
-  float reserved[2];     /* pads the record to 96 bytes */
+  /* Set per batch by the host (Evaluator::prepare) where the batch's program reads rows of E
+     (BRDFCL_E_ROW): where this material's row of the sheen albedo table, blended once for its
+     sheen_roughness, starts in the table buffer, in floats. 0 elsewhere. */
+  brdfcl_u32 sheen_e_row;
+  float reserved;        /* pads the record to 96 bytes */
 } brdfcl_material;
 
 /* Clamps, documented in docs/model.md ("Clamps"). Both sit below the alphas of roughness 0.05

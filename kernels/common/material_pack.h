@@ -30,7 +30,8 @@ static inline brdfcl_material brdfcl_pack_material(brdfcl_material_params m) {
     p.base_color[i] = m.base_color[i];
     p.sheen_color[i] = m.sheen_color[i];
   }
-  for (int i = 0; i < 2; ++i) p.reserved[i] = 0.0f;
+  p.sheen_e_row = 0u;
+  p.reserved = 0.0f;
   p.clearcoat_roughness = m.clearcoat_roughness;
   p.roughness = m.roughness;
   p.ior_f0 = 0.04f;

@@ -1,9 +1,11 @@
 // How each lane of a batch gets its own material (kernels/brdf/material.h, material_gather): a
 // batch over 256 materials with random indices, through the planes kernel and the row kernel, gives
 // bit for bit what each material gives alone: every lobe and profile at 16 lanes, the layered
-// material at 8.
+// material at 8. Each material's own row of the sheen albedo table gives what the table gives.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <random>
@@ -101,6 +103,67 @@ TEST(MaterialLanes, ManyMaterialsGiveEachMaterialsOwnBitsOnEveryLobe) {
       std::string first;
       EXPECT_EQ(differences(planes, grid, s, ulps, &first), 0u) << "planes kernel, first at " << first;
       EXPECT_EQ(differences(ev.evaluate(materials, s), grid, s, ulps, &first), 0u) << "row kernel, first at " << first;
+    }
+  }
+}
+
+// Each material of a batch reads its own row of the sheen albedo table, blended once by the host
+// (Evaluator::prepare, BRDFCL_E_ROW; materials of one sheenRoughness share a row); a batch of more
+// than Evaluator::kMaxSheenRows materials blends the table's two rows at every lookup. Both give
+// the albedo-scaled lobes to the rounding of E (a few ulps of values up to ~6, times
+// max(sheenColor)), bounded here against the same lobe unscaled, at cosines from the clamp's 1e-4
+// up, where E rises and falls fastest: through the gathering program and the one-material one.
+TEST(MaterialLanes, RowsOfTheSheenTableGiveWhatTheTableGives) {
+  std::mt19937_64 rng(seed() + 320);
+  Domain d;
+  d.minCos = 1e-4f;
+  d.belowHorizon = 0;
+  d.zeroLayerShare = 0;
+  d.draftShare = 0;
+  std::vector<MaterialParams> materials;
+  for (int k = 0; k < 4; ++k) materials.push_back(randomMaterial(rng, d));
+  materials.push_back(randomMaterial(rng, d));
+  materials.back().sheenRoughness = materials[0].sheenRoughness;  // shares material 0's row
+  const std::size_t n = 4096 + 5;
+  const Samples s = randomSamples(rng, n, materials.size(), d);
+  Samples first = s;  // every sample on material 0
+  std::fill(first.material.begin(), first.material.end(), 0u);
+  // The same materials, then copies of material 0 past the rows' limit: the table's program.
+  std::vector<MaterialParams> padded = materials;
+  padded.resize(Evaluator::kMaxSheenRows + 1, materials[0]);
+
+  for (int lanes : {16, 1}) {
+    ForcedLanes forced(lanes);
+    for (SheenScaling scaling : {SheenScaling::Min, SheenScaling::View}) {
+      for (Lobe lobe : {Lobe::All, Lobe::Specular}) {
+        EvalOptions o;
+        o.lobe = lobe;
+        o.sheenScaling = scaling;
+        EvalOptions none = o;
+        none.sheenScaling = SheenScaling::None;
+        Evaluator ev(runtime(), o), unscaledEv(runtime(), none);
+        const auto check = [&](const std::vector<float>& rows, const std::vector<float>& table,
+                               const std::vector<float>& unscaled, const Samples& at, const std::string& what) {
+          double worst = 0;
+          std::size_t w = 0;
+          for (std::size_t i = 0; i < 3 * n; ++i) {
+            const double excess = std::abs(double(rows[i]) - double(table[i])) /
+                                  (4e-6 * std::abs(double(unscaled[i])) + 1e-6 * std::abs(double(table[i])) + 1e-30);
+            if (excess > worst) worst = excess, w = i;
+          }
+          const std::size_t i = w / 3;
+          EXPECT_LE(worst, 1.0) << what << ", " << lanes << " lanes, scaling " << toString(scaling) << ", lobe "
+                                << toString(lobe) << ": sample " << i << " channel " << w % 3 << ", "
+                                << brdfcl::test::describe(materials[at.material[i]]) << ", L (" << at.L[3 * i] << ", "
+                                << at.L[3 * i + 1] << ", " << at.L[3 * i + 2] << "), V (" << at.V[3 * i] << ", "
+                                << at.V[3 * i + 1] << ", " << at.V[3 * i + 2] << "): rows " << rows[w] << ", table "
+                                << table[w] << ", unscaled " << unscaled[w];
+        };
+        check(ev.evaluate(materials, s), ev.evaluate(padded, s), unscaledEv.evaluate(materials, s), s,
+              "five materials");
+        check(ev.evaluate({materials[0]}, first), ev.evaluate(padded, first),
+              unscaledEv.evaluate({materials[0]}, first), first, "one material");
+      }
     }
   }
 }

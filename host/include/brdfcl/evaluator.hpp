@@ -25,6 +25,8 @@ struct SheenAlbedoTable {
   std::size_t width = kSize, height = kSize;
   std::vector<float> values;  // height rows of width
   float lookup(float mu, float sheenRoughness) const;  // bilinear, as the kernels do it
+  // E along mu for one sheenRoughness: the two rows lookup blends, blended once (width values).
+  std::vector<float> rowAt(float sheenRoughness) const;
 };
 
 // Bakes E by numerical integration on the device (kernels/sheen_albedo.cl).
@@ -54,6 +56,11 @@ class SoaBatch;
 // Tests: tests/unit/test_threads.cpp.
 class Evaluator {
  public:
+  // Materials up to which a batch reads a row of the sheen albedo table a material, blended once
+  // for its sheenRoughness (kernels/brdf/material.h, BRDFCL_E_ROW); a larger batch blends two
+  // rows of the table at every lookup. 1.3 MB of rows at most.
+  static constexpr std::size_t kMaxSheenRows = 1024;
+
   Evaluator(Runtime& rt, EvalOptions options);
   ~Evaluator();
 

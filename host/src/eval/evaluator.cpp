@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
+#include <unordered_map>
 #include <utility>
 
 #include <sys/mman.h>
@@ -163,10 +164,29 @@ Evaluator::Batch Evaluator::prepare(const std::vector<MaterialParams>& materials
   const auto features = featuresOf(materials, options_.profile);
   Batch b;
   for (const auto& m : materials) b.packed.push_back(packMaterial(m, options_.profile));
+  // Under the spec profile each material reads its own row of E, blended here once for its
+  // sheenRoughness and placed after the table (kernels/brdf/material.h, BRDFCL_E_ROW): a lookup
+  // is then two texel reads and one blend instead of four and three. Materials of one
+  // sheenRoughness share a row; past kMaxSheenRows materials the kernel blends the table's rows.
+  const bool eRow =
+      options_.profile == Profile::Spec && features.needsSheenAlbedo(options_) && materials.size() <= kMaxSheenRows;
   if (features.needsSheenAlbedo(options_)) {
     const SheenAlbedoTable& table = sheenAlbedo();
     b.table = table.values;
     b.tableSize = int(table.width);
+    if (eRow) {
+      std::unordered_map<std::uint32_t, std::uint32_t> rowAt;  // sheen_roughness's bits -> row
+      for (brdfcl_material& p : b.packed) {
+        std::uint32_t bits;
+        std::memcpy(&bits, &p.sheen_roughness, sizeof bits);
+        const auto [at, fresh] = rowAt.try_emplace(bits, std::uint32_t(b.table.size()));
+        if (fresh) {
+          const std::vector<float> row = table.rowAt(p.sheen_roughness);
+          b.table.insert(b.table.end(), row.begin(), row.end());
+        }
+        p.sheen_e_row = at->second;
+      }
+    }
   }
   // Engine profiles read three.js's DFG table right after the E table, khronos the Sample
   // Renderer's sheen albedo texture after that, babylon its BRDF texture (docs/profiles.md "Tables").
@@ -188,6 +208,7 @@ Evaluator::Batch Evaluator::prepare(const std::vector<MaterialParams>& materials
     // One material: every lane reads the same record (no gathers); indices are still checked.
     b.program = rt_.opencl().program("eval.cl", materialDefines(options_, features) + fmt::format(" -DBRDFCL_W={}", b.shape.lanes) +
                                            (materials.size() == 1 ? " -DBRDFCL_ONE_MATERIAL=1" : "") +
+                                           (eRow ? " -DBRDFCL_E_ROW=1" : "") +
                                            fmt::format(" -DBRDFCL_KERNELS={}", unsigned(kernels)),
                                        Runtime::OpenCL::Arithmetic::Batch);
     const auto& ctx = rt_.opencl().context();

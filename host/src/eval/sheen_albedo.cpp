@@ -1,5 +1,6 @@
-// Baking of the sheen albedo table E(mu, r) on the device (kernels/sheen_albedo.cl), and the
-// host-side bilinear lookup that mirrors the kernels' one (kernels/brdf/sheen_albedo.h).
+// Baking of the sheen albedo table E(mu, r) on the device (kernels/sheen_albedo.cl), the
+// host-side bilinear lookup that mirrors the kernels' one (kernels/brdf/sheen_albedo.h), and the
+// row of one sheenRoughness that the materials of a batch read (Evaluator::prepare).
 #include <algorithm>
 #include <cmath>
 
@@ -34,6 +35,17 @@ float SheenAlbedoTable::lookup(float mu, float sheenRoughness) const {
   const float top = row0[0] + (row0[1] - row0[0]) * fx;
   const float bottom = row1[0] + (row1[1] - row1[0]) * fx;
   return top + (bottom - top) * fy;
+}
+
+std::vector<float> SheenAlbedoTable::rowAt(float sheenRoughness) const {
+  const float y = std::sqrt(std::clamp(sheenRoughness, 0.0f, 1.0f)) * float(height - 1);
+  const int y0 = std::min(int(y), int(height) - 2);
+  const float fy = y - float(y0);
+  const float* row0 = values.data() + std::size_t(y0) * width;
+  const float* row1 = row0 + width;
+  std::vector<float> row(width);
+  for (std::size_t x = 0; x < width; ++x) row[x] = row0[x] + (row1[x] - row0[x]) * fy;
+  return row;
 }
 
 SheenAlbedoTable bakeSheenAlbedo(Runtime& rt, SheenDistribution d, SheenVisibility v, std::size_t size,

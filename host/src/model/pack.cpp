@@ -25,6 +25,7 @@ static_assert(offsetof(brdfcl_material, alpha) == 16);
 static_assert(offsetof(brdfcl_material, sheen_color) == 32);
 static_assert(offsetof(brdfcl_material, flags) == 60);
 static_assert(offsetof(brdfcl_material, clearcoat_alpha) == 68);
+static_assert(offsetof(brdfcl_material, sheen_e_row) == 88);
 
 namespace {
 float max3(const Rgb& c) { return std::max({c[0], c[1], c[2]}); }

@@ -12,10 +12,17 @@
    technique"): 1 - max(sheenColor) E(N.V), and under BRDFCL_SCALING_MIN the smaller of that and
    its N.L twin. Draft lanes have sheen_max 0. */
 BRDF_FN realw sheen_base_scale(const material_lanes m, lobe_geometry g, __global const float* sheen_e, int sheen_e_size) {
+#if BRDFCL_E_ROW
+  /* Each material's row of E, blended once by the host (material.h, BRDFCL_E_ROW). */
+  realw s_view = 1.0f - m.sheen_max * E_SheenAlbedoAlong(sheen_e, sheen_e_size, m.e_row, g.NdotV);
+  if (BRDFCL_SCALING != BRDFCL_SCALING_MIN) return s_view;
+  realw s_light = 1.0f - m.sheen_max * E_SheenAlbedoAlong(sheen_e, sheen_e_size, m.e_row, g.NdotL);
+#else
   sheen_albedo_row row = E_SheenAlbedoRow(sheen_e_size, m.sheen_roughness);
   realw s_view = 1.0f - m.sheen_max * E_SheenAlbedo(sheen_e, sheen_e_size, row, g.NdotV);
   if (BRDFCL_SCALING != BRDFCL_SCALING_MIN) return s_view;
   realw s_light = 1.0f - m.sheen_max * E_SheenAlbedo(sheen_e, sheen_e_size, row, g.NdotL);
+#endif
   return min(s_view, s_light);
 }
 
