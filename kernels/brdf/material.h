@@ -117,7 +117,26 @@ BRDF_FN void material_flag_lanes(material_lanes* out, intw flags) {
 #ifndef BRDFCL_MATERIAL_TRANSPOSE
 #define BRDFCL_MATERIAL_TRANSPOSE 3
 #endif
-#if BRDFCL_W == 1
+#ifndef BRDFCL_MATERIAL_VLOAD
+#define BRDFCL_MATERIAL_VLOAD 0
+#endif
+#if BRDFCL_W == 1 && BRDFCL_MATERIAL_VLOAD
+/* The record as six 16-byte loads instead of a load a field: on a GPU, a warp's loads of one field
+   from 96-byte records touch a cache line a lane, once a field. A tuning define
+   (BRDFCL_BUILD_OPTIONS=-DBRDFCL_MATERIAL_VLOAD=1, bench/gpu/variants.txt); records start at
+   multiples of 96 bytes in a buffer, so every float4 is aligned. */
+typedef union {
+  brdfcl_material m;
+  float4 words[6];
+} brdfcl_material_words;
+typedef char brdfcl_record_is_six_words[sizeof(brdfcl_material) == 6 * sizeof(float4) ? 1 : -1];
+BRDF_FN material_lanes material_gather(__global const brdfcl_material* materials, uintw index) {
+  __global const float4* r = (__global const float4*)(materials + index);
+  brdfcl_material_words w;
+  for (int k = 0; k < 6; ++k) w.words[k] = r[k];
+  return material_splat_private(&w.m);
+}
+#elif BRDFCL_W == 1
 BRDF_FN material_lanes material_gather(__global const brdfcl_material* materials, uintw index) {
   return material_splat(materials + index);
 }

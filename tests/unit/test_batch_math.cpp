@@ -1,7 +1,8 @@
 // The batch kernels' arithmetic per device (Runtime's Arithmetic::Batch): exact on CPUs; on GPUs
 // the device's own division, sqrt and special functions with the row kernels' normalization
 // done in double, which must still give the host readers' bits. BRDFCL_BATCH_MATH=fast builds
-// the GPU form on PoCL, so that it is checked where CI runs.
+// the GPU form on PoCL, so that it is checked where CI runs. The GPUs' tuning variant of the one-lane
+// material gather is checked here the same way.
 #include <gtest/gtest.h>
 
 #include <cfloat>
@@ -65,6 +66,24 @@ TEST(BatchMath, BuildOptionsAreAppendedForTuning) {
   ForcedEnv extra("BRDFCL_BUILD_OPTIONS", "-DBRDFCL_TUNING_PROBE=1");
   EXPECT_TRUE(has(runtime().opencl().mathOptions(Arithmetic::Exact), " -DBRDFCL_TUNING_PROBE=1"));
   EXPECT_TRUE(has(runtime().opencl().mathOptions(Arithmetic::Batch), " -DBRDFCL_TUNING_PROBE=1"));
+}
+
+// The one-lane gather's tuning variant for GPUs (BRDFCL_MATERIAL_VLOAD: the record as six 16-byte
+// loads, bench/gpu/variants.txt) gives each lane its record's bits, under the spec and under an
+// engine profile, which reads the record's third piece too.
+TEST(BatchMath, TheRecordInSixWordsGivesEachMaterialsBits) {
+  ForcedLanes forced(1);
+  std::mt19937_64 rng(seed() + 96);
+  std::vector<MaterialParams> materials;
+  for (int m = 0; m < 64; ++m) materials.push_back(randomMaterial(rng));
+  const Samples s = randomSamples(rng, 1000, materials.size());
+  for (Profile p : {Profile::Spec, Profile::Filament}) {
+    EvalOptions o;
+    o.profile = p;
+    const std::vector<float> fields = Evaluator(runtime(), o).evaluate(materials, s);
+    ForcedEnv words("BRDFCL_BUILD_OPTIONS", "-DBRDFCL_MATERIAL_VLOAD=1");
+    EXPECT_EQ(Evaluator(runtime(), o).evaluate(materials, s), fields) << toString(p);
+  }
 }
 
 // Directions of any length, zero or subnormal components, and the extremes that take the
