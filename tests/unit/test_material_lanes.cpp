@@ -11,6 +11,7 @@
 #include <random>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "support.hpp"
@@ -132,38 +133,40 @@ TEST(MaterialLanes, RowsOfTheSheenTableGiveWhatTheTableGives) {
   std::vector<MaterialParams> padded = materials;
   padded.resize(Evaluator::kMaxSheenRows + 1, materials[0]);
 
+  // Both scalings and both lobes that scale, in two pairings a width (each builds its own programs).
+  const std::pair<SheenScaling, Lobe> cases[] = {{SheenScaling::Min, Lobe::All}, {SheenScaling::View, Lobe::Specular}};
   for (int lanes : {16, 1}) {
     ForcedLanes forced(lanes);
-    for (SheenScaling scaling : {SheenScaling::Min, SheenScaling::View}) {
-      for (Lobe lobe : {Lobe::All, Lobe::Specular}) {
-        EvalOptions o;
-        o.lobe = lobe;
-        o.sheenScaling = scaling;
-        EvalOptions none = o;
-        none.sheenScaling = SheenScaling::None;
-        Evaluator ev(runtime(), o), unscaledEv(runtime(), none);
-        const auto check = [&](const std::vector<float>& rows, const std::vector<float>& table,
-                               const std::vector<float>& unscaled, const Samples& at, const std::string& what) {
-          double worst = 0;
-          std::size_t w = 0;
-          for (std::size_t i = 0; i < 3 * n; ++i) {
-            const double excess = std::abs(double(rows[i]) - double(table[i])) /
-                                  (4e-6 * std::abs(double(unscaled[i])) + 1e-6 * std::abs(double(table[i])) + 1e-30);
-            if (excess > worst) worst = excess, w = i;
-          }
-          const std::size_t i = w / 3;
-          EXPECT_LE(worst, 1.0) << what << ", " << lanes << " lanes, scaling " << toString(scaling) << ", lobe "
-                                << toString(lobe) << ": sample " << i << " channel " << w % 3 << ", "
-                                << brdfcl::test::describe(materials[at.material[i]]) << ", L (" << at.L[3 * i] << ", "
-                                << at.L[3 * i + 1] << ", " << at.L[3 * i + 2] << "), V (" << at.V[3 * i] << ", "
-                                << at.V[3 * i + 1] << ", " << at.V[3 * i + 2] << "): rows " << rows[w] << ", table "
-                                << table[w] << ", unscaled " << unscaled[w];
-        };
-        check(ev.evaluate(materials, s), ev.evaluate(padded, s), unscaledEv.evaluate(materials, s), s,
-              "five materials");
-        check(ev.evaluate({materials[0]}, first), ev.evaluate(padded, first),
-              unscaledEv.evaluate({materials[0]}, first), first, "one material");
-      }
+    for (const auto& c : cases) {
+      const SheenScaling scaling = c.first;
+      const Lobe lobe = c.second;
+      EvalOptions o;
+      o.lobe = lobe;
+      o.sheenScaling = scaling;
+      EvalOptions none = o;
+      none.sheenScaling = SheenScaling::None;
+      Evaluator ev(runtime(), o), unscaledEv(runtime(), none);
+      const auto check = [&](const std::vector<float>& rows, const std::vector<float>& table,
+                             const std::vector<float>& unscaled, const Samples& at, const std::string& what) {
+        double worst = 0;
+        std::size_t w = 0;
+        for (std::size_t i = 0; i < 3 * n; ++i) {
+          const double excess = std::abs(double(rows[i]) - double(table[i])) /
+                                (4e-6 * std::abs(double(unscaled[i])) + 1e-6 * std::abs(double(table[i])) + 1e-30);
+          if (excess > worst) worst = excess, w = i;
+        }
+        const std::size_t i = w / 3;
+        EXPECT_LE(worst, 1.0) << what << ", " << lanes << " lanes, scaling " << toString(scaling) << ", lobe "
+                              << toString(lobe) << ": sample " << i << " channel " << w % 3 << ", "
+                              << brdfcl::test::describe(materials[at.material[i]]) << ", L (" << at.L[3 * i] << ", "
+                              << at.L[3 * i + 1] << ", " << at.L[3 * i + 2] << "), V (" << at.V[3 * i] << ", "
+                              << at.V[3 * i + 1] << ", " << at.V[3 * i + 2] << "): rows " << rows[w] << ", table "
+                              << table[w] << ", unscaled " << unscaled[w];
+      };
+      check(ev.evaluate(materials, s), ev.evaluate(padded, s), unscaledEv.evaluate(materials, s), s,
+            "five materials");
+      check(ev.evaluate({materials[0]}, first), ev.evaluate(padded, first),
+            unscaledEv.evaluate({materials[0]}, first), first, "one material");
     }
   }
 }
