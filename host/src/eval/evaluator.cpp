@@ -168,8 +168,9 @@ Evaluator::Batch Evaluator::prepare(const std::vector<MaterialParams>& materials
   // sheenRoughness and placed after the table (kernels/brdf/material.h, BRDFCL_E_ROW): a lookup
   // is then two texel reads and one blend instead of four and three. Materials of one
   // sheenRoughness share a row; past kMaxSheenRows materials the kernel blends the table's rows.
-  const bool eRow =
-      options_.profile == Profile::Spec && features.needsSheenAlbedo(options_) && materials.size() <= kMaxSheenRows;
+  // The samplers (Kernels::None) build programs of their own, which read the table.
+  const bool eRow = kernels != Kernels::None && options_.profile == Profile::Spec &&
+                    features.needsSheenAlbedo(options_) && materials.size() <= kMaxSheenRows;
   if (features.needsSheenAlbedo(options_)) {
     const SheenAlbedoTable& table = sheenAlbedo();
     b.table = table.values;

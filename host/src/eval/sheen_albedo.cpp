@@ -23,13 +23,25 @@ const std::vector<double> kCosBreaks = {0.0, 1e-3, 1e-2, 0.05, 0.2, 0.5, 1.0};
 const std::vector<double> kPhiBreaks = {0.0, M_PI / 2, 3 * M_PI / 4, 7 * M_PI / 8, 15 * M_PI / 16, 31 * M_PI / 32, M_PI};
 // Part of the cache key: bump when the quadrature above or the table layout changes.
 constexpr const char* kBakeVersion = "graded-GL12 sqrt-warp v2";
+
+// Where sheenRoughness r falls between rows y0 and y0 + 1 of a table of `height` rows, as the
+// kernels' E_SheenAlbedoRow places it.
+struct RowPosition {
+  int y0;
+  float fy;
+};
+RowPosition rowPosition(float r, std::size_t height) {
+  const float y = std::sqrt(std::clamp(r, 0.0f, 1.0f)) * float(height - 1);
+  const int y0 = std::min(int(y), int(height) - 2);
+  return {y0, y - float(y0)};
+}
 }  // namespace
 
 float SheenAlbedoTable::lookup(float mu, float sheenRoughness) const {
   const float x = std::sqrt(std::clamp(mu, 0.0f, 1.0f)) * float(width - 1);
-  const float y = std::sqrt(std::clamp(sheenRoughness, 0.0f, 1.0f)) * float(height - 1);
-  const int x0 = std::min(int(x), int(width) - 2), y0 = std::min(int(y), int(height) - 2);
-  const float fx = x - float(x0), fy = y - float(y0);
+  const int x0 = std::min(int(x), int(width) - 2);
+  const float fx = x - float(x0);
+  const auto [y0, fy] = rowPosition(sheenRoughness, height);
   const float* row0 = values.data() + std::size_t(y0) * width + x0;
   const float* row1 = row0 + width;
   const float top = row0[0] + (row0[1] - row0[0]) * fx;
@@ -38,9 +50,7 @@ float SheenAlbedoTable::lookup(float mu, float sheenRoughness) const {
 }
 
 std::vector<float> SheenAlbedoTable::rowAt(float sheenRoughness) const {
-  const float y = std::sqrt(std::clamp(sheenRoughness, 0.0f, 1.0f)) * float(height - 1);
-  const int y0 = std::min(int(y), int(height) - 2);
-  const float fy = y - float(y0);
+  const auto [y0, fy] = rowPosition(sheenRoughness, height);
   const float* row0 = values.data() + std::size_t(y0) * width;
   const float* row1 = row0 + width;
   std::vector<float> row(width);
